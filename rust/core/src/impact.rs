@@ -1,0 +1,310 @@
+//! One impact, from first touch to separation: the record of MODEL.md and an optional trace.
+
+use crate::contact::{Contact, Dof, Forces};
+use crate::error::{Error, Result};
+use crate::geometry::Shape;
+use crate::integrate::{Gear5, Stepper, Verlet};
+use crate::scene::{Initial, Integrator, Model, NormalLaw, Scene};
+use std::f64::consts::PI;
+
+/// A contact that has not ended after this many estimated contact times is stopped.
+pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
+
+/// What one impact returns (public names of MODEL.md).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Record {
+    /// Normal restitution -vy' / vy.
+    pub e_n: f64,
+    /// Tangential restitution vx' / vx of the centre of mass; `None` when vx = 0.
+    pub e_t: Option<f64>,
+    /// Kinematic restitution |v'| / |v|.
+    pub e_kin: f64,
+    /// Spin after the impact (rad/s).
+    pub omega_out: f64,
+    /// Contact-point restitution -v_cp' / v_cp, v_cp = vx + r omega; `None` when v_cp = 0.
+    pub beta: Option<f64>,
+    /// atan2(vy', vx') in degrees.
+    pub rebound_angle_deg: f64,
+    /// Velocity after the impact (m/s).
+    pub vx_out: f64,
+    /// See `vx_out`.
+    pub vy_out: f64,
+    /// Time with overlap, summed over contacts, crossings interpolated linearly (s).
+    pub contact_time: f64,
+    /// Integration steps from first touch to the end.
+    pub steps: u64,
+    /// Number of contacts (re-contacts of a spinning polygon belong to the same impact).
+    pub contacts: u32,
+    /// Largest depth of the lowest point below the plate (m).
+    pub max_depth: f64,
+    /// Largest overlap area (m^2).
+    pub max_area: f64,
+    /// Stick to slip transitions.
+    pub slip_events: u64,
+    /// Kinetic energy (translation + rotation) before the impact (J/m).
+    pub energy_in: f64,
+    /// Kinetic energy after the impact (J/m).
+    pub energy_out: f64,
+    /// Work of the normal force on the body (J/m, <= 0 up to integration error).
+    pub work_normal: f64,
+    /// Work of the tangential force on the body (J/m, <= 0 up to integration error).
+    pub work_friction: f64,
+    /// (energy_out - energy_in - work_normal - work_friction) / energy_in.
+    pub energy_residual: f64,
+    /// The particle left the plate and cleared it.
+    pub separated: bool,
+    /// Stopped after TIMEOUT_CONTACT_TIMES estimated contact times.
+    pub timed_out: bool,
+}
+
+/// Per-step history of one impact, as columns (one entry per step, the first at touch).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Trace {
+    /// Time since first touch (s).
+    pub t: Vec<f64>,
+    /// Centre of mass x (m).
+    pub x: Vec<f64>,
+    /// Centre of mass y (m).
+    pub y: Vec<f64>,
+    /// Orientation (rad).
+    pub phi: Vec<f64>,
+    /// Velocity x (m/s).
+    pub vx: Vec<f64>,
+    /// Velocity y (m/s).
+    pub vy: Vec<f64>,
+    /// Spin (rad/s).
+    pub omega: Vec<f64>,
+    /// Normal force (N/m), clipped.
+    pub f_n: Vec<f64>,
+    /// Tangential force (N/m).
+    pub f_t: Vec<f64>,
+    /// Overlap area (m^2).
+    pub area: Vec<f64>,
+    /// Depth of the lowest point, negative when clear (m).
+    pub depth: Vec<f64>,
+    /// 0 no tangential contact, 1 stick, 2 slip.
+    pub stick: Vec<u8>,
+    /// Tangential spring elongation (m).
+    pub xi: Vec<f64>,
+}
+
+impl Trace {
+    fn push(&mut self, t: f64, q: &Dof, v: &Dof, f: &Forces, depth: f64, xi: f64) {
+        self.t.push(t);
+        self.x.push(q[0]);
+        self.y.push(q[1]);
+        self.phi.push(q[2]);
+        self.vx.push(v[0]);
+        self.vy.push(v[1]);
+        self.omega.push(v[2]);
+        self.f_n.push(f.f_el + f.f_d);
+        self.f_t.push(f.f_t);
+        self.area.push(f.overlap.map_or(0.0, |o| o.area));
+        self.depth.push(depth);
+        self.stick.push(f.stick.code());
+        self.xi.push(xi);
+    }
+}
+
+/// Simulates one impact.
+pub fn simulate(scene: &Scene, init: &Initial) -> Result<Record> {
+    let model = Model::new(scene)?;
+    run(&model, init, None)
+}
+
+/// Simulates one impact and records every step.
+pub fn simulate_with_trace(scene: &Scene, init: &Initial) -> Result<(Record, Trace)> {
+    let model = Model::new(scene)?;
+    let mut trace = Trace::default();
+    let rec = run(&model, init, Some(&mut trace))?;
+    Ok((rec, trace))
+}
+
+/// Signed depth of the lowest point below the plate (negative when clear).
+#[inline]
+fn signed_depth(shape: &Shape, y: f64, phi: f64) -> f64 {
+    shape.touch_height(phi) - y
+}
+
+/// Elastic potential of the normal law at depth `depth` below touch, orientation `phi`,
+/// translation only (J/m).
+fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
+    match model.scene.normal_law {
+        NormalLaw::Area => {
+            let shape = &model.scene.shape;
+            let y = shape.touch_height(phi) - depth;
+            shape.overlap(y, phi).map_or(0.0, |o| {
+                model.scene.e_modulus * o.first_moment / model.length
+            })
+        }
+        NormalLaw::Linear { kn, .. } => 0.5 * kn * depth * depth,
+    }
+}
+
+/// Largest depth from the energy balance of the normal law without damping, and a check that
+/// it stays below r / 2 (beyond that the overlap law describes no real contact).
+pub fn estimate_max_depth(model: &Model, init: &Initial) -> Result<f64> {
+    let ke_n = 0.5 * model.mass * init.vy * init.vy;
+    let half_r = 0.5 * model.r;
+    if normal_potential(model, half_r, init.phi0) < ke_n {
+        let (stiff_name, stiff) = match model.scene.normal_law {
+            NormalLaw::Area => ("E", model.scene.e_modulus),
+            NormalLaw::Linear { kn, .. } => ("kn", kn),
+        };
+        let v = (init.vx * init.vx + init.vy * init.vy).sqrt();
+        return Err(Error::invalid(
+            "v",
+            v,
+            format!(
+                "small enough that the estimated depth stays below r / 2 at {stiff_name} = {stiff:e} Pa \
+                 (normal kinetic energy {ke_n:e} J/m exceeds the elastic energy at depth r / 2: lower v or raise {stiff_name})"
+            ),
+        ));
+    }
+    let (mut lo, mut hi) = (0.0, half_r);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if normal_potential(model, mid, init.phi0) < ke_n {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(hi)
+}
+
+fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Record> {
+    model.check_initial(init)?;
+    let scene = &model.scene;
+    let depth_est = estimate_max_depth(model, init)?;
+    let t_est = PI * depth_est / init.vy.abs();
+    let max_steps = (TIMEOUT_CONTACT_TIMES * t_est / model.dt).ceil().min(1e12) as u64 + 10;
+    let q0 = [0.0, scene.shape.touch_height(init.phi0), init.phi0];
+    let v0 = [init.vx, init.vy, init.omega];
+    match scene.integrator {
+        Integrator::Gear5 => Ok(integrate(
+            model,
+            init,
+            Gear5::new(q0, v0, model.dt),
+            max_steps,
+            trace,
+        )),
+        Integrator::Verlet => Ok(integrate(
+            model,
+            init,
+            Verlet::new(q0, v0),
+            max_steps,
+            trace,
+        )),
+        Integrator::Reference => Err(Error::invalid(
+            "integrator",
+            "reference",
+            "one of \"gear5\", \"verlet\"",
+        )),
+    }
+}
+
+fn kinetic_energy(model: &Model, v: &Dof) -> f64 {
+    0.5 * model.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * model.inertia * v[2] * v[2]
+}
+
+fn integrate<S: Stepper>(
+    model: &Model,
+    init: &Initial,
+    mut stepper: S,
+    max_steps: u64,
+    mut trace: Option<&mut Trace>,
+) -> Record {
+    let shape = &model.scene.shape;
+    let dt = model.dt;
+    let inv_mass = [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia];
+    let mut contact = Contact::new(model);
+    let mut rec = Record {
+        contacts: 1,
+        ..Record::default()
+    };
+    let v_in = stepper.velocity();
+    rec.energy_in = kinetic_energy(model, &v_in);
+
+    // Trapezoidal quadrature of the powers; at touch every force is zero.
+    let (mut p_el, mut p_d, mut p_t) = (0.0, 0.0, 0.0);
+    let (mut w_el, mut w_d, mut w_t) = (0.0, 0.0, 0.0);
+    let (mut in_contact, mut contact_start, mut prev_depth) = (true, 0.0, 0.0);
+    if let Some(tr) = trace.as_deref_mut() {
+        tr.push(
+            0.0,
+            &stepper.position(),
+            &v_in,
+            &Forces::default(),
+            0.0,
+            0.0,
+        );
+    }
+    loop {
+        if rec.steps >= max_steps {
+            rec.timed_out = true;
+            break;
+        }
+        let f = stepper.step(&mut contact, dt, &inv_mass);
+        rec.steps += 1;
+        let t = rec.steps as f64 * dt;
+        let (q, v) = (stepper.position(), stepper.velocity());
+        let (n_el, n_d, n_t) = f.powers(q[1], &v);
+        w_el += 0.5 * (p_el + n_el) * dt;
+        w_d += 0.5 * (p_d + n_d) * dt;
+        w_t += 0.5 * (p_t + n_t) * dt;
+        (p_el, p_d, p_t) = (n_el, n_d, n_t);
+        if let Some(o) = f.overlap {
+            rec.max_area = rec.max_area.max(o.area);
+        }
+        let depth = signed_depth(shape, q[1], q[2]);
+        rec.max_depth = rec.max_depth.max(depth);
+        if in_contact && depth <= 0.0 {
+            let frac = prev_depth / (prev_depth - depth);
+            rec.contact_time += t - dt + frac * dt - contact_start;
+            in_contact = false;
+        } else if !in_contact && depth > 0.0 {
+            let frac = prev_depth / (prev_depth - depth);
+            contact_start = t - dt + frac * dt;
+            rec.contacts += 1;
+            in_contact = true;
+        }
+        if let Some(tr) = trace.as_deref_mut() {
+            tr.push(t, &q, &v, &f, depth, contact.spring.xi);
+        }
+        prev_depth = depth;
+        // Done once no part of the particle can reach the plate: its circumscribed circle is
+        // clear and moving away.
+        if !in_contact && q[1] >= model.r && v[1] > 0.0 {
+            break;
+        }
+    }
+    let v = stepper.velocity();
+    if in_contact {
+        rec.contact_time += rec.steps as f64 * dt - contact_start;
+    }
+    rec.slip_events = contact.spring.slip_events;
+    // The elastic force is integrated like the others, not taken as minus the change of its
+    // potential: in the clipped tail the force is switched off while the potential is not
+    // yet zero, and that stored energy is lost to the clip (a real part of the normal work).
+    let work_elastic = w_el;
+    rec.work_normal = work_elastic + w_d;
+    rec.work_friction = w_t;
+    rec.energy_out = kinetic_energy(model, &v);
+    rec.energy_residual =
+        (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in;
+    rec.vx_out = v[0];
+    rec.vy_out = v[1];
+    rec.omega_out = v[2];
+    rec.e_n = -v[1] / init.vy;
+    rec.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
+    rec.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
+    let v_cp = init.vx + model.r * init.omega;
+    rec.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
+    rec.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
+    rec.separated = !rec.timed_out;
+    rec
+}

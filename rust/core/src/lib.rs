@@ -1,0 +1,36 @@
+//! # restitution-core
+//!
+//! The physics engine of *restitution*: one oblique impact of a rigid, frictional, damped 2D
+//! particle (an exact disc or a convex polygon) on a flat plate, with the overlap-area contact
+//! law of Krengel's 2D DEM study, integrated from first touch to separation.
+//!
+//! ```
+//! use restitution_core::{simulate, Initial, Scene};
+//!
+//! // The study's preset on an exact disc (r = 0.01 m, E = 1e7 Pa, gamma = 0.33, mu = 0.5).
+//! let scene = Scene { mu: 0.0, gamma: 0.0, ..Scene::default() };
+//! let rec = simulate(&scene, &Initial::from_angle(0.0357, 30.0, 0.0, 0.0)).unwrap();
+//! // Frictionless and undamped: elastic bounce, tangential velocity untouched.
+//! assert!((rec.e_n - 1.0).abs() < 1e-6);
+//! assert_eq!(rec.e_t, Some(1.0));
+//! ```
+//!
+//! Conventions (see MODEL.md): the plate is y = 0, the particle above it; theta is measured
+//! from the plate; spin is counter-clockwise positive; units are per unit depth.
+#![warn(missing_docs)]
+
+pub mod contact;
+pub mod error;
+pub mod geometry;
+pub mod impact;
+pub mod integrate;
+pub mod scene;
+pub mod sweep;
+pub mod tangential;
+
+pub use error::{Error, Result};
+pub use geometry::{Overlap, Polygon, Shape};
+pub use impact::{estimate_max_depth, simulate, simulate_with_trace, Record, Trace};
+pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};
+pub use sweep::{run_cases, Case};
+pub use tangential::StickState;

@@ -1,0 +1,282 @@
+//! Scene parameters: what the user chooses, validated, with the study's defaults, and the
+//! derived constants (mass, inertia, time step, tangential spring) the contact law uses.
+
+use crate::error::{ensure_param, finite, non_negative, positive, Result};
+use crate::geometry::Shape;
+
+/// The normal contact law.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum NormalLaw {
+    /// Force proportional to the overlap area (the study's law): F = E A / L plus damping
+    /// gamma sqrt(m E) (dA/dt) / L.
+    #[default]
+    Area,
+    /// Linear spring-dashpot on the depth of the lowest point: F = kn delta + cn d(delta)/dt.
+    Linear {
+        /// Normal stiffness kn (Pa: force per depth per metre).
+        kn: f64,
+        /// Normal damping cn (Pa s).
+        cn: f64,
+    },
+}
+
+/// Which moment of inertia the particle gets.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InertiaModel {
+    /// From the shape (disc: m r^2 / 2; polygons: exact polygon formula).
+    #[default]
+    Shape,
+    /// Sphere, I = 0.4 m r^2, for comparison with 3D codes (discs only).
+    Sphere,
+}
+
+/// The time integrator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Integrator {
+    /// Gear 5th-order predictor-corrector (6 scaled Taylor terms), the study's integrator.
+    #[default]
+    Gear5,
+    /// Velocity Verlet; velocity-dependent forces see the predicted velocity v + a dt.
+    Verlet,
+    /// High-accuracy reference (not yet available: returns an error).
+    Reference,
+}
+
+impl Integrator {
+    /// Largest accepted `dt_factor` for this integrator (see `docs` and the stability test):
+    /// measured on the stiffest part of the contact (the tangential spring of a disc at full
+    /// stick and the normal spring at depth r), with a safety margin of 2.
+    pub fn max_dt_factor(self) -> f64 {
+        match self {
+            Integrator::Gear5 => 0.5,
+            Integrator::Verlet => 1.0,
+            Integrator::Reference => 1.0,
+        }
+    }
+
+    /// Public name, as in the Python API.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integrator::Gear5 => "gear5",
+            Integrator::Verlet => "verlet",
+            Integrator::Reference => "reference",
+        }
+    }
+}
+
+/// Everything that defines an impact except the initial velocity and spin.
+///
+/// `Scene::default()` is the study's preset on an exact disc (MODEL.md).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Particle shape (default: exact disc, r = 0.01 m).
+    pub shape: Shape,
+    /// Density rho (kg/m^3; default 2500).
+    pub rho: f64,
+    /// Young's modulus E of the area law (Pa; default 1e7). Sets t_ref = sqrt(m / E).
+    pub e_modulus: f64,
+    /// Normal damping gamma of the area law (dimensionless; default 0.33).
+    pub gamma: f64,
+    /// Tangential damping ratio gamma_t: c_t = gamma_t sqrt(k_t m_t) (default 0.5; 0 allowed).
+    pub gamma_t: f64,
+    /// Coulomb friction coefficient mu (default 0.5; 0: no tangential force).
+    pub mu: f64,
+    /// Tangential stiffness k_t (Pa); `None`: 2 E / 7 (area law) or 2 kn / 7 (linear law).
+    pub kt: Option<f64>,
+    /// Normal contact law (default: area).
+    pub normal_law: NormalLaw,
+    /// Moment of inertia model (default: from the shape).
+    pub inertia: InertiaModel,
+    /// Time integrator (default: Gear-5).
+    pub integrator: Integrator,
+    /// dt = dt_factor * t_ref (default 0.01).
+    pub dt_factor: f64,
+}
+
+impl Default for Scene {
+    fn default() -> Self {
+        Scene {
+            shape: Shape::Disc { r: 0.01 },
+            rho: 2500.0,
+            e_modulus: 1e7,
+            gamma: 0.33,
+            gamma_t: 0.5,
+            mu: 0.5,
+            kt: None,
+            normal_law: NormalLaw::Area,
+            inertia: InertiaModel::Shape,
+            integrator: Integrator::Gear5,
+            dt_factor: 0.01,
+        }
+    }
+}
+
+/// The particle's state at first touch: velocity (m/s), spin (rad/s, counter-clockwise
+/// positive) and orientation (rad).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Initial {
+    /// Velocity along the plate (m/s).
+    pub vx: f64,
+    /// Velocity normal to the plate (m/s); must be < 0 (approaching).
+    pub vy: f64,
+    /// Spin before impact (rad/s, counter-clockwise positive).
+    pub omega: f64,
+    /// Orientation at first touch (rad; ignored for a disc).
+    pub phi0: f64,
+}
+
+impl Initial {
+    /// v (cos theta, -sin theta) with theta from the plate in degrees; cos is exactly 0 at 90.
+    pub fn from_angle(v: f64, theta_deg: f64, omega: f64, phi0_deg: f64) -> Self {
+        let (s, c) = sin_cos_deg(theta_deg);
+        Initial {
+            vx: v * c,
+            vy: -v * s,
+            omega,
+            phi0: phi0_deg.to_radians(),
+        }
+    }
+}
+
+/// sin and cos of an angle in degrees, exact at multiples of 90 degrees.
+pub fn sin_cos_deg(deg: f64) -> (f64, f64) {
+    let r = deg.rem_euclid(360.0);
+    if r == 0.0 {
+        (0.0, 1.0)
+    } else if r == 90.0 {
+        (1.0, 0.0)
+    } else if r == 180.0 {
+        (0.0, -1.0)
+    } else if r == 270.0 {
+        (-1.0, 0.0)
+    } else {
+        deg.to_radians().sin_cos()
+    }
+}
+
+/// Constants derived from a validated scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Model {
+    /// The scene it was derived from.
+    pub scene: Scene,
+    /// Mass per unit depth (kg/m).
+    pub mass: f64,
+    /// Moment of inertia per unit depth (kg m).
+    pub inertia: f64,
+    /// Circumradius r (m).
+    pub r: f64,
+    /// Characteristic length L = 4 r for a plate (m).
+    pub length: f64,
+    /// Reference time t_ref = sqrt(m / E) (area law) or sqrt(m / kn) (linear law) (s).
+    pub t_ref: f64,
+    /// Time step (s).
+    pub dt: f64,
+    /// Tangential stiffness k_t (Pa).
+    pub kt: f64,
+    /// Tangential damping c_t (Pa s).
+    pub ct: f64,
+    /// Normal damping prefactor gamma sqrt(m E) / L of the area law (Pa s / m).
+    pub area_damping: f64,
+}
+
+impl Model {
+    /// Validates the scene and derives the constants.
+    pub fn new(scene: &Scene) -> Result<Self> {
+        positive("rho", scene.rho)?;
+        positive("E", scene.e_modulus)?;
+        non_negative("gamma", scene.gamma)?;
+        non_negative("gamma_t", scene.gamma_t)?;
+        non_negative("mu", scene.mu)?;
+        if let Some(kt) = scene.kt {
+            positive("kt", kt)?;
+        }
+        let bound = scene.integrator.max_dt_factor();
+        ensure_param!(
+            scene.dt_factor.is_finite() && scene.dt_factor > 0.0 && scene.dt_factor <= bound,
+            "dt_factor",
+            scene.dt_factor,
+            format!(
+                "in (0, {bound}] (stability bound of the {} integrator)",
+                scene.integrator.name()
+            )
+        );
+        ensure_param!(
+            scene.integrator != Integrator::Reference,
+            "integrator",
+            "reference",
+            "one of \"gear5\", \"verlet\" (the reference integrator is not implemented yet)"
+        );
+        let r = scene.shape.circumradius();
+        positive("r", r)?;
+        let mass = scene.rho * scene.shape.area();
+        let inertia = match scene.inertia {
+            InertiaModel::Shape => scene.rho * scene.shape.polar_moment(),
+            InertiaModel::Sphere => {
+                ensure_param!(
+                    matches!(scene.shape, Shape::Disc { .. }),
+                    "inertia",
+                    "sphere",
+                    "\"shape\" for polygons (\"sphere\" applies to discs only)"
+                );
+                0.4 * mass * r * r
+            }
+        };
+        let stiffness = match scene.normal_law {
+            NormalLaw::Area => scene.e_modulus,
+            NormalLaw::Linear { kn, cn } => {
+                positive("kn", kn)?;
+                non_negative("cn", cn)?;
+                kn
+            }
+        };
+        let t_ref = (mass / stiffness).sqrt();
+        let kt = scene.kt.unwrap_or(2.0 * stiffness / 7.0);
+        let mt = 1.0 / (1.0 / mass + r * r / inertia);
+        let ct = scene.gamma_t * (kt * mt).sqrt();
+        let length = 4.0 * r;
+        let area_damping = scene.gamma * (mass * scene.e_modulus).sqrt() / length;
+        let dt = scene.dt_factor * t_ref;
+        for (name, v) in [
+            ("mass", mass),
+            ("inertia", inertia),
+            ("dt", dt),
+            ("kt", kt),
+            ("ct", ct),
+            ("area_damping", area_damping),
+        ] {
+            ensure_param!(
+                v.is_finite() && v >= 0.0 && (v > 0.0 || name == "ct" || name == "area_damping"),
+                name,
+                v,
+                "finite and > 0 (check the magnitudes of r, rho and E)"
+            );
+        }
+        Ok(Model {
+            scene: scene.clone(),
+            mass,
+            inertia,
+            r,
+            length,
+            t_ref,
+            dt,
+            kt,
+            ct,
+            area_damping,
+        })
+    }
+
+    /// Validates an initial state for this model.
+    pub fn check_initial(&self, init: &Initial) -> Result<()> {
+        finite("vx", init.vx)?;
+        finite("vy", init.vy)?;
+        finite("omega_in", init.omega)?;
+        finite("phi0", init.phi0)?;
+        ensure_param!(
+            init.vy < 0.0,
+            "vy",
+            init.vy,
+            "< 0 (the particle must approach the plate)"
+        );
+        Ok(())
+    }
+}

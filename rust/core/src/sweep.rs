@@ -1,0 +1,45 @@
+//! Many impacts in parallel (rayon over cases). Every case runs the very same code as a single
+//! [`simulate`](crate::simulate) call, so results do not depend on the thread count.
+
+use crate::error::Result;
+use crate::impact::{simulate, Record};
+use crate::scene::{Initial, Scene};
+use rayon::prelude::*;
+
+/// One impact to run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Case {
+    /// The scene.
+    pub scene: Scene,
+    /// The initial state at first touch.
+    pub init: Initial,
+}
+
+/// Runs every case, in parallel over `threads` threads (0: rayon's default).
+///
+/// Returns one record per case in input order, or the error of the first failing case with
+/// its index.
+pub fn run_cases(
+    cases: &[Case],
+    threads: usize,
+) -> std::result::Result<Vec<Record>, (usize, crate::Error)> {
+    let work = || {
+        cases
+            .par_iter()
+            .map(|c| simulate(&c.scene, &c.init))
+            .collect::<Vec<Result<Record>>>()
+    };
+    let results = if threads == 0 {
+        work()
+    } else {
+        match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+            Ok(pool) => pool.install(work),
+            Err(_) => work(),
+        }
+    };
+    results
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| r.map_err(|e| (i, e)))
+        .collect()
+}
