@@ -1,0 +1,25 @@
+"""restitution: a laboratory for oblique particle impacts (2D DEM).
+
+>>> import restitution as rs
+>>> rec = rs.simulate(rs.Scene(), theta_deg=45.0)
+>>> 0.85 < rec.e_n < 0.95
+True
+"""
+
+from ._core import __version__
+from .scene import MAX_DT_FACTOR, Scene
+from .shapes import ConvexPolygon, Disc, RegularPolygon
+from .simulate import Record, simulate
+from .sweep import sweep
+
+__all__ = [
+    "ConvexPolygon",
+    "Disc",
+    "MAX_DT_FACTOR",
+    "Record",
+    "RegularPolygon",
+    "Scene",
+    "__version__",
+    "simulate",
+    "sweep",
+]

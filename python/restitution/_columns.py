@@ -1,0 +1,127 @@
+"""Scenes and axes to the flat per-case columns the compiled engine takes, and back."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+import numpy as np
+import polars as pl
+
+from .scene import INTEGRATORS, MAX_DT_FACTOR, Scene
+from .shapes import ConvexPolygon, Disc
+
+#: Float columns, in the engine's order.
+FLOAT_COLUMNS = ("theta_deg", "omega_in", "v", "mu", "gamma", "gamma_t", "E", "rho", "r", "phi0_deg",
+                 "dt_factor", "kn", "cn", "kt")
+
+#: Record columns, in output order (MODEL.md names).
+RECORD_COLUMNS = ("e_n", "e_t", "e_kin", "omega_out", "beta", "rebound_angle_deg", "vx_out", "vy_out",
+                  "contact_time", "steps", "contacts", "max_depth", "max_area", "slip_events", "energy_in",
+                  "energy_out", "work_normal", "work_friction", "energy_residual", "separated", "timed_out")
+
+#: Names accepted as sweep axes.
+AXES = FLOAT_COLUMNS + ("n", "integrator")
+
+
+def scene_defaults(scene: Scene) -> dict[str, Any]:
+    """The scene's value of every engine column."""
+    kn = scene.E if scene.kn is None else scene.kn
+    return {
+        "theta_deg": np.nan, "omega_in": 0.0, "v": scene.v, "mu": scene.mu, "gamma": scene.gamma,
+        "gamma_t": scene.gamma_t, "E": scene.E, "rho": scene.rho, "r": scene.r,
+        "phi0_deg": float(getattr(scene.shape, "phi0_deg", 0.0)), "dt_factor": scene.dt_factor,
+        "kn": kn, "cn": 0.0 if scene.cn is None else scene.cn,
+        "kt": np.nan if scene.kt is None else scene.kt,
+        "n": 0 if isinstance(scene.shape, Disc) else int(scene.shape.n),
+        "integrator": INTEGRATORS.index(scene.integrator),
+    }
+
+
+def _as_float_array(name: str, values: Any) -> np.ndarray:
+    try:
+        a = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise TypeError(f"`{name}` must be a number or a 1-D array of numbers (found {values!r:.80})") from None
+    if a.ndim > 1:
+        raise ValueError(f"require `{name}` a scalar or 1-D array (found shape {a.shape})")
+    return np.atleast_1d(a)
+
+
+def validate_axis(name: str, values: Any, scene: Scene) -> np.ndarray:
+    """Checks one axis' values with the same rules as the scalar fields; returns a 1-D array."""
+    if name == "integrator":
+        vals = [values] if isinstance(values, str) else list(values)
+        for v in vals:
+            if v not in INTEGRATORS[:2]:
+                raise ValueError(f'require `integrator` values in "gear5", "verlet" (found {v!r})')
+            if scene.dt_factor > MAX_DT_FACTOR[v]:
+                raise ValueError(f"require `dt_factor` <= {MAX_DT_FACTOR[v]} for the {v} integrator (found {scene.dt_factor})")
+        return np.array([INTEGRATORS.index(v) for v in vals], dtype=np.int64)
+    if name == "n":
+        a = np.atleast_1d(np.asarray(values))
+        if a.ndim != 1 or not np.issubdtype(a.dtype, np.integer):
+            raise TypeError(f"`n` must be an integer or a 1-D array of integers (found {values!r:.80})")
+        if isinstance(scene.shape, ConvexPolygon):
+            raise ValueError("`n` is not a sweep axis for a ConvexPolygon scene (its vertices are fixed)")
+        if np.any((a < 3) & (a != 0)):
+            raise ValueError(f"require `n` >= 3, or 0 for an exact disc (found {a[(a < 3) & (a != 0)][0]})")
+        return a.astype(np.int64)
+    if name not in FLOAT_COLUMNS:
+        allowed = ", ".join(AXES)
+        raise ValueError(f"`{name}` is not a sweep axis; allowed axes: {allowed}")
+    a = _as_float_array(name, values)
+    if a.size == 0:
+        raise ValueError(f"require `{name}` non-empty")
+    bad = ~np.isfinite(a)
+    if np.any(bad):
+        raise ValueError(f"require `{name}` finite (found {a[bad][0]})")
+    if name == "theta_deg":
+        bad = (a <= 0.0) | (a > 90.0)
+        rule = "in (0, 90] degrees, measured from the plate"
+    elif name in ("v", "E", "rho", "r", "kn", "kt"):
+        bad = a <= 0.0
+        rule = "> 0"
+    elif name in ("mu", "gamma", "gamma_t", "cn"):
+        bad = a < 0.0
+        rule = ">= 0"
+    elif name == "dt_factor":
+        bound = MAX_DT_FACTOR[scene.integrator]
+        bad = (a <= 0.0) | (a > bound)
+        rule = f"in (0, {bound}] for the {scene.integrator} integrator"
+    else:  # omega_in, phi0_deg: any finite value
+        bad = np.zeros(a.shape, dtype=bool)
+        rule = ""
+    if np.any(bad):
+        raise ValueError(f"require `{name}` {rule} (found {a[bad][0]})")
+    return a
+
+
+def build_columns(scene: Scene, per_case: Mapping[str, np.ndarray], n_cases: int) -> dict[str, np.ndarray]:
+    """Engine columns of length ``n_cases``: per-case arrays where given, the scene's value elsewhere."""
+    base = scene_defaults(scene)
+    cols: dict[str, np.ndarray] = {}
+    for name in FLOAT_COLUMNS:
+        v = per_case.get(name)
+        cols[name] = np.ascontiguousarray(v, dtype=np.float64) if v is not None else np.full(n_cases, base[name], dtype=np.float64)
+    for name in ("n", "integrator"):
+        v = per_case.get(name)
+        cols[name] = np.ascontiguousarray(v, dtype=np.int64) if v is not None else np.full(n_cases, base[name], dtype=np.int64)
+    if scene.kn is None and "E" in per_case:
+        cols["kn"] = cols["E"].copy()  # kn defaults to E case by case
+    return cols
+
+
+def template_vertices(scene: Scene) -> np.ndarray | None:
+    """Unit-circumradius vertices of a ConvexPolygon scene (the engine scales them by r)."""
+    if isinstance(scene.shape, ConvexPolygon):
+        return scene.shape._template
+    return None
+
+
+def records_frame(raw: Mapping[str, np.ndarray]) -> pl.DataFrame:
+    """Record columns as a polars frame; e_t and beta are null (never NaN) where undefined."""
+    frame = pl.DataFrame({name: raw[name] for name in RECORD_COLUMNS + ("e_t_valid", "beta_valid")})
+    return frame.with_columns(
+        pl.when(pl.col("e_t_valid")).then(pl.col("e_t")).otherwise(None).alias("e_t"),
+        pl.when(pl.col("beta_valid")).then(pl.col("beta")).otherwise(None).alias("beta"),
+    ).drop("e_t_valid", "beta_valid")

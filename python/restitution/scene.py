@@ -1,0 +1,105 @@
+"""The scene: everything that defines an impact except its angle and spin."""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass, field
+from typing import Any
+
+from ._validation import check_choice, check_non_negative, check_positive
+from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape
+
+INTEGRATORS = ("gear5", "verlet", "reference")
+NORMAL_LAWS = ("area", "linear")
+INERTIAS = ("shape", "sphere")
+
+#: Largest accepted ``dt_factor`` per integrator (the stability bound, with a margin; see docs).
+MAX_DT_FACTOR = {"gear5": 0.5, "verlet": 1.0, "reference": 1.0}
+
+
+@dataclass(frozen=True, kw_only=True)
+class Scene:
+    """An impact scene: particle, material, contact law and numerics (SI units, per unit depth).
+
+    ``Scene()`` is the study's preset on an exact disc; :meth:`Scene.paper` is the preset on
+    the study's 120-gon. Every field is validated: bad values raise ``ValueError`` naming the
+    parameter and its allowed range.
+
+    Examples
+    --------
+    >>> import restitution as rs
+    >>> scene = rs.Scene(mu=0.1)
+    >>> scene.replace(mu=1.0).mu
+    1.0
+    """
+
+    shape: Shape = field(default_factory=lambda: Disc(r=0.01))
+    """Particle shape: ``Disc``, ``RegularPolygon`` or ``ConvexPolygon``."""
+    rho: float = 2500.0
+    """Density (kg/m^3)."""
+    E: float = 1e7
+    """Young's modulus of the area law (Pa); sets t_ref = sqrt(m / E)."""
+    gamma: float = 0.33
+    """Normal damping of the area law (dimensionless; calibrated to e_N = 0.90 head-on)."""
+    gamma_t: float = 0.5
+    """Tangential damping ratio: c_t = gamma_t sqrt(k_t m_t) (0 allowed)."""
+    mu: float = 0.5
+    """Coulomb friction coefficient (0: no tangential force)."""
+    v: float = 0.0357
+    """Impact speed (m/s)."""
+    integrator: str = "gear5"
+    """"gear5" (the study's), "verlet" (cheap) or "reference" (not yet available)."""
+    dt_factor: float = 0.01
+    """dt = dt_factor * t_ref; at most ``MAX_DT_FACTOR[integrator]``."""
+    normal_law: str = "area"
+    """"area" (force proportional to overlap area) or "linear" (spring-dashpot on the depth)."""
+    kn: float | None = None
+    """Linear law stiffness (Pa); None: equal to E."""
+    cn: float | None = None
+    """Linear law damping (Pa s); None: 0."""
+    kt: float | None = None
+    """Tangential stiffness (Pa); None: 2 E / 7 (area) or 2 kn / 7 (linear)."""
+    inertia: str = "shape"
+    """"shape" (exact) or "sphere" (I = 0.4 m r^2, discs only)."""
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon)):
+            raise TypeError(f"`shape` must be Disc, RegularPolygon or ConvexPolygon (found {type(self.shape).__name__})")
+        for name in ("rho", "E", "v"):
+            check_positive(name, getattr(self, name))
+        for name in ("gamma", "gamma_t", "mu"):
+            check_non_negative(name, getattr(self, name))
+        check_choice("integrator", self.integrator, INTEGRATORS)
+        check_choice("normal_law", self.normal_law, NORMAL_LAWS)
+        check_choice("inertia", self.inertia, INERTIAS)
+        if self.integrator == "reference":
+            raise ValueError('require `integrator` one of "gear5", "verlet" (found "reference": not implemented yet)')
+        bound = MAX_DT_FACTOR[self.integrator]
+        dtf = check_positive("dt_factor", self.dt_factor)
+        if dtf > bound:
+            raise ValueError(
+                f"require `dt_factor` in (0, {bound}] for the {self.integrator} integrator "
+                f"(its stability bound; found {dtf})"
+            )
+        if self.kn is not None:
+            check_positive("kn", self.kn)
+        if self.cn is not None:
+            check_non_negative("cn", self.cn)
+        if self.kt is not None:
+            check_positive("kt", self.kt)
+        if self.inertia == "sphere" and not isinstance(self.shape, Disc):
+            raise ValueError('require `inertia` "shape" for polygons ("sphere" applies to discs only)')
+
+    @classmethod
+    def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:
+        """The study's preset (MODEL.md): a 120-gon of circumradius 0.01 m unless ``shape`` is given."""
+        return cls(shape=shape if shape is not None else RegularPolygon(r=0.01, n=120, phi0_deg=0.0), **changes)
+
+    def replace(self, **changes: Any) -> Scene:
+        """A validated copy with some fields changed."""
+        return dataclasses.replace(self, **changes)
+
+    @property
+    def r(self) -> float:
+        """Circumradius of the particle (m)."""
+        return float(self.shape.r)
