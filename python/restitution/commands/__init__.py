@@ -1,0 +1,1 @@
+"""Subcommands of the ``restitution`` CLI, one module each (see :mod:`restitution.cli`)."""
