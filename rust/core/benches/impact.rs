@@ -1,1 +1,129 @@
-fn main() {}
+//! One impact of the paper preset (theta = 45 deg, mu = 0.5) per iteration: the exact disc with
+//! Gear-5 and Verlet, and the study's 120-gon (half-plane clipping path), side by side.
+//!
+//! Criterion reports the time per impact and, through `Throughput::Elements(steps)`, steps per
+//! second. A summary after the groups prints us per impact and ns per step for each
+//! configuration, measured in this same run (best of several batches, so one noisy batch on a
+//! busy machine does not count). Targets (issues 3 and 4): <= 50 ns per step for the exact disc,
+//! <= 1 us per step for the 120-gon.
+//!
+//! `cargo bench -p restitution-core --bench impact`
+
+use criterion::{Criterion, Throughput};
+use restitution_core::{simulate, Initial, Integrator, Scene, Shape};
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+/// The paper preset's speed, at 45 degrees, no spin.
+fn paper_initial() -> Initial {
+    Initial::from_angle(0.0357, 45.0, 0.0, 0.0)
+}
+
+/// The configurations compared: (name, scene). All are the paper preset apart from the shape
+/// and the integrator.
+fn configurations() -> Vec<(&'static str, Scene)> {
+    let disc = Scene {
+        mu: 0.5,
+        ..Scene::default()
+    };
+    let gon = Scene {
+        shape: Shape::regular_polygon(0.01, 120).expect("valid 120-gon"),
+        ..disc.clone()
+    };
+    vec![
+        ("disc_gear5", disc.clone()),
+        (
+            "disc_verlet",
+            Scene {
+                integrator: Integrator::Verlet,
+                ..disc
+            },
+        ),
+        ("120gon_gear5", gon.clone()),
+        (
+            "120gon_verlet",
+            Scene {
+                integrator: Integrator::Verlet,
+                ..gon
+            },
+        ),
+    ]
+}
+
+fn steps_of(scene: &Scene, init: &Initial) -> u64 {
+    simulate(scene, init).expect("paper preset impact").steps
+}
+
+fn bench_impacts(c: &mut Criterion) {
+    let init = paper_initial();
+    let mut group = c.benchmark_group("impact_paper_45deg");
+    for (name, scene) in configurations() {
+        group.throughput(Throughput::Elements(steps_of(&scene, &init)));
+        group.bench_function(name, |b| {
+            b.iter(|| simulate(black_box(&scene), black_box(&init)).expect("impact"))
+        });
+    }
+    group.finish();
+}
+
+/// Best-of-batches time per impact, measured outside criterion so that ns per step can be
+/// printed directly.
+fn time_per_impact(scene: &Scene, init: &Initial) -> Duration {
+    // Size a batch to about 0.1 s.
+    let t0 = Instant::now();
+    let mut n = 0u32;
+    while t0.elapsed() < Duration::from_millis(50) {
+        black_box(simulate(black_box(scene), black_box(init)).expect("impact"));
+        n += 1;
+    }
+    let per_batch = (2 * n).max(1);
+    let mut best = Duration::MAX;
+    for _ in 0..7 {
+        let t = Instant::now();
+        for _ in 0..per_batch {
+            black_box(simulate(black_box(scene), black_box(init)).expect("impact"));
+        }
+        best = best.min(t.elapsed() / per_batch);
+    }
+    best
+}
+
+fn summary() {
+    let init = paper_initial();
+    println!("\nSummary (paper preset, theta = 45 deg, mu = 0.5; best of 7 batches of ~0.1 s):");
+    println!(
+        "{:<14} {:>7} {:>12} {:>10}",
+        "configuration", "steps", "us/impact", "ns/step"
+    );
+    let mut disc_gear5_ns = None;
+    for (name, scene) in configurations() {
+        let steps = steps_of(&scene, &init);
+        let t = time_per_impact(&scene, &init);
+        let ns_step = t.as_secs_f64() * 1e9 / steps as f64;
+        if name == "disc_gear5" {
+            disc_gear5_ns = Some(ns_step);
+        }
+        let ratio = disc_gear5_ns.map_or(String::new(), |d| {
+            format!("  ({:.2}x disc_gear5)", ns_step / d)
+        });
+        println!(
+            "{name:<14} {steps:>7} {:>12.2} {ns_step:>10.1}{ratio}",
+            t.as_secs_f64() * 1e6
+        );
+    }
+}
+
+fn main() {
+    let mut c = Criterion::default()
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2))
+        .sample_size(20)
+        .configure_from_args();
+    bench_impacts(&mut c);
+    c.final_summary();
+    // `cargo test --benches` and `--list` run the benchmark binary too: skip the timing there.
+    let quick = std::env::args().any(|a| a == "--test" || a == "--list");
+    if !quick {
+        summary();
+    }
+}
