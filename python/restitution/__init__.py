@@ -10,6 +10,7 @@ from ._core import __version__
 from .scene import MAX_DT_FACTOR, Scene
 from .shapes import ConvexPolygon, Disc, RegularPolygon
 from .simulate import Record, simulate
+from .dataset import read_dataset, sweep_to_dataset
 from .sweep import sweep
 
 __all__ = [
@@ -20,6 +21,8 @@ __all__ = [
     "RegularPolygon",
     "Scene",
     "__version__",
+    "read_dataset",
     "simulate",
     "sweep",
+    "sweep_to_dataset",
 ]

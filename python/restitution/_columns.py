@@ -7,7 +7,7 @@ from typing import Any, Mapping
 import numpy as np
 import polars as pl
 
-from .scene import INTEGRATORS, MAX_DT_FACTOR, Scene
+from .scene import INERTIAS, INTEGRATORS, MAX_DT_FACTOR, NORMAL_LAWS, Scene
 from .shapes import ConvexPolygon, Disc
 
 #: Float columns, in the engine's order.
@@ -19,8 +19,13 @@ RECORD_COLUMNS = ("e_n", "e_t", "e_kin", "omega_out", "beta", "rebound_angle_deg
                   "contact_time", "steps", "contacts", "max_depth", "max_area", "slip_events", "energy_in",
                   "energy_out", "work_normal", "work_friction", "energy_residual", "separated", "timed_out")
 
-#: Names accepted as sweep axes.
-AXES = FLOAT_COLUMNS + ("n", "integrator")
+#: Axes whose values are names; the engine gets their index in these tuples. ``integrator``
+#: is a per-case engine column; ``normal_law`` and ``inertia`` are per call, so a sweep over
+#: them runs one engine call per value group (see :func:`restitution.sweep.run_per_case`).
+CHOICE_AXES = {"integrator": INTEGRATORS[:2], "normal_law": NORMAL_LAWS, "inertia": INERTIAS}
+
+#: Names accepted as sweep axes (``n``: the shape, 0 for an exact disc, >= 3 for a regular n-gon).
+AXES = FLOAT_COLUMNS + ("n",) + tuple(CHOICE_AXES)
 
 
 def scene_defaults(scene: Scene) -> dict[str, Any]:
@@ -34,6 +39,8 @@ def scene_defaults(scene: Scene) -> dict[str, Any]:
         "kt": np.nan if scene.kt is None else scene.kt,
         "n": 0 if isinstance(scene.shape, Disc) else int(scene.shape.n),
         "integrator": INTEGRATORS.index(scene.integrator),
+        "normal_law": NORMAL_LAWS.index(scene.normal_law),
+        "inertia": INERTIAS.index(scene.inertia),
     }
 
 
@@ -49,20 +56,25 @@ def _as_float_array(name: str, values: Any) -> np.ndarray:
 
 def validate_axis(name: str, values: Any, scene: Scene) -> np.ndarray:
     """Checks one axis' values with the same rules as the scalar fields; returns a 1-D array."""
-    if name == "integrator":
-        vals = [values] if isinstance(values, str) else list(values)
+    if name in CHOICE_AXES:
+        names = CHOICE_AXES[name]
+        vals = [values] if isinstance(values, str) else list(np.atleast_1d(np.asarray(values, dtype=object)))
+        if not vals:
+            raise ValueError(f"require `{name}` non-empty")
         for v in vals:
-            if v not in INTEGRATORS[:2]:
-                raise ValueError(f'require `integrator` values in "gear5", "verlet" (found {v!r})')
-            if scene.dt_factor > MAX_DT_FACTOR[v]:
-                raise ValueError(f"require `dt_factor` <= {MAX_DT_FACTOR[v]} for the {v} integrator (found {scene.dt_factor})")
-        return np.array([INTEGRATORS.index(v) for v in vals], dtype=np.int64)
+            if v not in names:
+                choices = ", ".join(f'"{c}"' for c in names)
+                raise ValueError(f"require `{name}` values in {choices} (found {v!r})")
+        table = INTEGRATORS if name == "integrator" else names
+        return np.array([table.index(v) for v in vals], dtype=np.int64)
     if name == "n":
         a = np.atleast_1d(np.asarray(values))
         if a.ndim != 1 or not np.issubdtype(a.dtype, np.integer):
             raise TypeError(f"`n` must be an integer or a 1-D array of integers (found {values!r:.80})")
         if isinstance(scene.shape, ConvexPolygon):
             raise ValueError("`n` is not a sweep axis for a ConvexPolygon scene (its vertices are fixed)")
+        if a.size == 0:
+            raise ValueError("require `n` non-empty")
         if np.any((a < 3) & (a != 0)):
             raise ValueError(f"require `n` >= 3, or 0 for an exact disc (found {a[(a < 3) & (a != 0)][0]})")
         return a.astype(np.int64)
@@ -85,15 +97,46 @@ def validate_axis(name: str, values: Any, scene: Scene) -> np.ndarray:
         bad = a < 0.0
         rule = ">= 0"
     elif name == "dt_factor":
-        bound = MAX_DT_FACTOR[scene.integrator]
-        bad = (a <= 0.0) | (a > bound)
-        rule = f"in (0, {bound}] for the {scene.integrator} integrator"
+        # The bound per integrator is checked with the integrator axis in check_combinations.
+        bad = a <= 0.0
+        rule = "> 0"
     else:  # omega_in, phi0_deg: any finite value
         bad = np.zeros(a.shape, dtype=bool)
         rule = ""
     if np.any(bad):
         raise ValueError(f"require `{name}` {rule} (found {a[bad][0]})")
     return a
+
+
+def check_combinations(scene: Scene, validated: Mapping[str, np.ndarray], *, rows: bool) -> None:
+    """Rules that tie two parameters: dt_factor against each integrator's stability bound, and
+    sphere inertia only for discs. ``rows``: the arrays are per-case columns (a cases table),
+    else independent axes of a Cartesian product (every combination occurs)."""
+    base = scene_defaults(scene)
+    def col(name: str) -> np.ndarray:
+        return validated[name] if name in validated else np.array([base[name]])
+    dt, integ = col("dt_factor"), col("integrator")
+    bounds = np.array([MAX_DT_FACTOR[name] for name in INTEGRATORS])
+    if rows:
+        dt_b, integ_b = np.broadcast_arrays(dt, integ)
+        bad = dt_b > bounds[integ_b]
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            name = INTEGRATORS[int(integ_b[i])]
+            raise ValueError(f"case {i}: require `dt_factor` in (0, {MAX_DT_FACTOR[name]}] for the {name} "
+                             f"integrator (its stability bound; found {dt_b[i]})")
+    else:
+        for code in np.unique(integ):
+            name = INTEGRATORS[int(code)]
+            if dt.max() > MAX_DT_FACTOR[name]:
+                raise ValueError(f"require `dt_factor` in (0, {MAX_DT_FACTOR[name]}] for the {name} "
+                                 f"integrator (its stability bound; found {dt.max()})")
+    sphere = col("inertia") == INERTIAS.index("sphere")
+    polygon = col("n") != 0 if not isinstance(scene.shape, ConvexPolygon) else np.array([True])
+    clash = (sphere & polygon) if rows else np.array([sphere.any() and polygon.any()])
+    if np.any(clash):
+        where = f"case {int(np.argmax(clash))}: " if rows else ""
+        raise ValueError(f'{where}require `inertia` "shape" for polygons ("sphere" applies to discs, n = 0, only)')
 
 
 def build_columns(scene: Scene, per_case: Mapping[str, np.ndarray], n_cases: int) -> dict[str, np.ndarray]:

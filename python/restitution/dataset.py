@@ -1,0 +1,431 @@
+"""Sweeps streamed to a Parquet dataset: one file per chunk, resumable, memory bounded.
+
+Layout of a dataset directory::
+
+    manifest.json          the spec (scene, shape, axes, chunk size), package version, counts
+    cases.parquet          the cases table, for sweeps over an explicit table
+    part-000000.parquet    cases 0 .. chunk_size - 1, in case order
+    part-000001.parquet    ...
+
+Chunk ``k`` always holds cases ``k * chunk_size`` up to the next multiple, so which rows a file
+holds depends on the spec only. A file is written to a hidden temporary name and renamed when
+complete, so a file that exists is whole; each carries its chunk index, case range and the
+spec's digest in its Parquet key-value metadata (``restitution.chunk``) along with the package
+version and the spec. Resuming recomputes exactly the chunks without a valid file, after
+checking that the spec is the one in the manifest (else it refuses, naming the first difference).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import queue
+import re
+import threading
+import time
+from dataclasses import dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+from typing import Any, Callable
+
+import polars as pl
+
+from . import _core
+from ._progress import Progress, StopOnInterrupt, want_progress
+from .config import spec_to_dict
+from .scene import Scene
+from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
+
+FORMAT = "restitution-sweep/1"
+MANIFEST = "manifest.json"
+CASES_FILE = "cases.parquet"
+_PART = re.compile(r"^part-(\d+)\.parquet$")
+_TMP = re.compile(r"^\.part-\d+\.parquet\.(\d+)\.\d+\.tmp$")
+#: Key of the per-file metadata; the spec goes in too unless it is huge (long explicit axes).
+META_KEY = "restitution.chunk"
+_MAX_SPEC_IN_FILE = 64 * 1024
+
+
+def part_name(index: int) -> str:
+    return f"part-{index:06d}.parquet"
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """What :func:`sweep_to_dataset` did."""
+
+    path: Path
+    n_cases: int
+    n_chunks: int
+    chunks_written: int
+    """Chunks computed and written by this call."""
+    chunks_skipped: int
+    """Chunks already in the dataset (valid files) when this call started."""
+    cases_written: int
+    seconds: float
+
+    @property
+    def impacts_per_s(self) -> float:
+        return self.cases_written / self.seconds if self.seconds > 0 else float("nan")
+
+
+def sweep_to_dataset(
+    scene: Scene | SweepSpec,
+    out: str | Path,
+    *,
+    cases: pl.DataFrame | None = None,
+    chunk_size: int | None = None,
+    threads: int | None = None,
+    progress: bool | None = None,
+    resume: bool = False,
+    scheduler: Any = None,
+    **axes: Any,
+) -> SweepResult:
+    """Runs a sweep chunk by chunk into the Parquet dataset directory ``out``.
+
+    Parameters
+    ----------
+    scene : Scene or SweepSpec
+        The scene (with ``axes`` or ``cases`` as in :func:`restitution.sweep`), or a ready spec
+        (e.g. from :func:`restitution.config.load_config`).
+    out : path
+        Dataset directory; created if missing. It must be new or empty unless ``resume``.
+    chunk_size : int, optional
+        Cases per chunk file (default :data:`restitution.sweep.DEFAULT_CHUNK`, or the
+        dataset's own when resuming).
+    threads : int, optional
+        Engine threads per chunk (default: all cores). Rows do not depend on it.
+    progress : bool, optional
+        Progress bar (default: for 50 000 impacts or more when stderr is a terminal).
+    resume : bool
+        Continue the sweep already in ``out``: compute only the chunks without a valid file.
+        Refused (``ValueError`` naming the first difference) if the spec is not the manifest's.
+    scheduler : str or distributed.Client, optional
+        Run the chunks as tasks on a Dask cluster (a scheduler address or a client); the
+        files are written here, by this process, as the tasks finish.
+
+    Returns
+    -------
+    SweepResult
+
+    Raises
+    ------
+    KeyboardInterrupt
+        After Ctrl-C, once the chunks in flight are written: every finished chunk is kept and
+        ``resume=True`` continues from there.
+    """
+    if isinstance(scene, SweepSpec):
+        if axes or cases is not None:
+            raise ValueError("give either a SweepSpec or a scene with axes/cases, not both")
+        spec = scene
+    else:
+        spec = SweepSpec(scene, axes=axes, cases=cases)
+    out = Path(out)
+    n_threads = check_threads(threads)
+    old = read_manifest(out) if (out / MANIFEST).exists() else None
+    if old is not None and not resume:
+        raise ValueError(f"`out` {out} already holds a sweep ({MANIFEST}); resume it (--resume, resume=True) "
+                         "or choose another directory")
+    if chunk_size is None:
+        chunk_size = int(old["chunk_size"]) if old is not None else DEFAULT_CHUNK
+    chunk_size = check_chunk_size(chunk_size)
+    manifest = make_manifest(spec, chunk_size)
+    if old is not None:
+        check_same_spec(old, manifest, out)
+    else:
+        _create(out, manifest)
+    if spec.cases is not None and not (out / CASES_FILE).exists():
+        _atomic_write(out / CASES_FILE, lambda tmp: spec.cases.write_parquet(tmp))  # type: ignore[union-attr]
+    _remove_stale_tmp(out)
+
+    chunks = list(spec.chunks(chunk_size))
+    done = {c.index for c in chunks if _valid_part(out, c, manifest["spec_sha256"])}
+    pending = [c for c in chunks if c.index not in done]
+    file_meta = _file_metadata(manifest)
+    bar = Progress(spec.n_cases, done=sum(c.stop - c.start for c in chunks if c.index in done),
+                   enabled=want_progress(progress, spec.n_cases))
+    writer = _Writer(lambda c, frame: _write_part(out, c, frame, manifest["spec_sha256"], file_meta))
+    t0 = time.perf_counter()
+    written = cases_written = 0
+
+    def finished(c: Chunk, frame: pl.DataFrame) -> None:
+        nonlocal written, cases_written
+        writer.put(c, frame)
+        written += 1
+        cases_written += c.stop - c.start
+        bar.update(c.stop - c.start)
+
+    error: BaseException | None = None
+    with StopOnInterrupt() as stop:
+        try:
+            if scheduler is not None:
+                from .distributed import run_chunks
+
+                run_chunks(spec, pending, scheduler, n_threads, finished, lambda: stop.stopped)
+            else:
+                for c in pending:
+                    if stop.stopped:
+                        break
+                    finished(c, spec.run(c.start, c.stop, n_threads))
+        except BaseException as err:  # noqa: BLE001 - re-raised below, after the drain
+            error = err
+        finally:
+            try:
+                writer.close()  # every finished chunk is written before we return or raise
+            except BaseException as err:  # noqa: BLE001
+                error = error or err
+            bar.close()
+    if error is not None:
+        raise error
+    result = SweepResult(out, spec.n_cases, len(chunks), written, len(done), cases_written,
+                         time.perf_counter() - t0)
+    if stop.stopped:
+        left = len(chunks) - len(done) - written
+        raise KeyboardInterrupt(f"stopped with {left} of {len(chunks)} chunks left in {out}; "
+                                "run again with --resume (resume=True) to finish")
+    return result
+
+
+def make_manifest(spec: SweepSpec, chunk_size: int) -> dict[str, Any]:
+    """The manifest of ``spec`` cut in chunks of ``chunk_size`` (``created`` aside, a pure function)."""
+    body = spec_to_dict(spec, chunk_size, CASES_FILE if spec.cases is not None else None)
+    digest = hashlib.sha256()
+    digest.update(json.dumps(body, sort_keys=True).encode())
+    digest.update(json.dumps(list(spec.axis_names)).encode())
+    digest.update(_core.__version__.encode())
+    cases_sha = _frame_digest(spec.cases) if spec.cases is not None else None
+    if cases_sha is not None:
+        digest.update(cases_sha.encode())
+    return {
+        "format": FORMAT,
+        "restitution_version": _core.__version__,
+        "spec": body,
+        "axes": list(spec.axis_names),
+        "cases_sha256": cases_sha,
+        "spec_sha256": digest.hexdigest(),
+        "n_cases": spec.n_cases,
+        "chunk_size": chunk_size,
+        "n_chunks": spec.n_chunks(chunk_size),
+        "integrator": spec.scene.integrator,
+        "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
+    }
+
+
+def check_same_spec(old: dict[str, Any], new: dict[str, Any], where: Path) -> None:
+    """Refuses (ValueError) to resume ``where`` with a spec other than its manifest's."""
+    head = f"refusing to resume {where}:"
+    if old.get("format") != FORMAT:
+        raise ValueError(f"{head} its format is {old.get('format')!r}, this package writes {FORMAT!r}")
+    if old.get("restitution_version") != new["restitution_version"]:
+        raise ValueError(f"{head} it was written by restitution {old.get('restitution_version')}, this is "
+                         f"{new['restitution_version']} (results may differ); start a new directory")
+    diffs = _diff(old.get("spec", {}), new["spec"], "")
+    if old.get("axes") != new["axes"]:
+        diffs.insert(0, f"axis order (dataset: {old.get('axes')}, now: {new['axes']})")
+    if old.get("cases_sha256") != new["cases_sha256"]:
+        diffs.append(f"the cases table (dataset's copy: {where / CASES_FILE})")
+    if not diffs and old.get("spec_sha256") != new["spec_sha256"]:
+        diffs.append(f"spec_sha256 (dataset: {old.get('spec_sha256')}, now: {new['spec_sha256']})")
+    if diffs:
+        more = f"; and {len(diffs) - 1} more: {', '.join(d.split(' (')[0] for d in diffs[1:])}" if len(diffs) > 1 else ""
+        raise ValueError(f"{head} the spec differs at {diffs[0]}{more}")
+
+
+def _diff(a: Any, b: Any, key: str) -> list[str]:
+    if isinstance(a, dict) and isinstance(b, dict):
+        out = []
+        for k in list(a) + [k for k in b if k not in a]:
+            sub = f"{key}.{k}" if key else k
+            if k not in a or k not in b:
+                out.append(f"{sub} (dataset: {_show(a.get(k, '<absent>'))}, now: {_show(b.get(k, '<absent>'))})")
+            else:
+                out.extend(_diff(a[k], b[k], sub))
+        return out
+    if a == b:
+        return []
+    if isinstance(a, list) and isinstance(b, list) and len(a) > 6:
+        if len(a) != len(b):
+            return [f"{key} (dataset: {len(a)} values, now: {len(b)})"]
+        i = next(i for i, (x, y) in enumerate(zip(a, b)) if x != y)
+        return [f"{key}[{i}] (dataset: {a[i]!r}, now: {b[i]!r})"]
+    return [f"{key} (dataset: {_show(a)}, now: {_show(b)})"]
+
+
+def _show(v: Any) -> str:
+    s = json.dumps(v)
+    return s if len(s) <= 80 else s[:77] + "..."
+
+
+def _frame_digest(df: pl.DataFrame) -> str:
+    """A content digest of a cases table (names, dtypes, values; stable across polars versions)."""
+    h = hashlib.sha256()
+    for name in df.columns:
+        col = df[name]
+        h.update(f"{name}:{col.dtype}:".encode())
+        h.update(json.dumps(col.to_list()).encode() if col.dtype == pl.String
+                 else col.is_null().to_numpy().tobytes() + col.fill_null(0).to_numpy().tobytes())
+    return h.hexdigest()
+
+
+def read_manifest(path: str | Path) -> dict[str, Any]:
+    """The manifest of the dataset at ``path``."""
+    p = Path(path) / MANIFEST
+    try:
+        return json.loads(p.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise ValueError(f"{path} is not a sweep dataset (no {MANIFEST})") from None
+    except json.JSONDecodeError as err:
+        raise ValueError(f"{p} is not valid JSON ({err})") from None
+
+
+def missing_chunks(path: str | Path) -> list[int]:
+    """Chunk indices of the dataset at ``path`` that have no file yet."""
+    m = read_manifest(path)
+    have = _part_files(Path(path))
+    return [k for k in range(m["n_chunks"]) if k not in have]
+
+
+def scan_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.LazyFrame:
+    """The dataset as a lazy frame, rows in case order (chunk files in index order).
+
+    An unfinished dataset raises ``ValueError`` (saying how many chunks are missing) unless
+    ``allow_partial``, which reads the chunks that exist.
+    """
+    path = Path(path)
+    m = read_manifest(path)
+    parts = _part_files(path)
+    missing = [k for k in range(m["n_chunks"]) if k not in parts]
+    if missing and not allow_partial:
+        raise ValueError(f"dataset {path} is incomplete: {len(missing)} of {m['n_chunks']} chunks missing "
+                         f"(first: {missing[0]}); finish it with --resume, or pass allow_partial=True")
+    files = [str(parts[k]) for k in sorted(parts) if k < m["n_chunks"]]
+    if not files:
+        raise ValueError(f"dataset {path} has no chunk files yet")
+    return pl.scan_parquet(files)
+
+
+def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFrame:
+    """The dataset as one frame, rows in case order (what :func:`restitution.sweep` returns)."""
+    return scan_dataset(path, allow_partial=allow_partial).collect()
+
+
+def _part_files(path: Path) -> dict[int, Path]:
+    out = {}
+    for entry in os.scandir(path):
+        m = _PART.match(entry.name)
+        if m:
+            out[int(m.group(1))] = Path(entry.path)
+    return out
+
+
+def _create(out: Path, manifest: dict[str, Any]) -> None:
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"`out` {out} exists and is not a directory")
+    if out.is_dir() and any(out.iterdir()):
+        raise ValueError(f"`out` {out} exists, is not empty and holds no sweep ({MANIFEST}); "
+                         "choose a new or empty directory")
+    out.mkdir(parents=True, exist_ok=True)
+    text = json.dumps(manifest, indent=1)
+    _atomic_write(out / MANIFEST, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
+
+
+def _file_metadata(manifest: dict[str, Any]) -> dict[str, str]:
+    spec = json.dumps(manifest["spec"])
+    return {
+        "restitution.version": manifest["restitution_version"],
+        "restitution.integrator": manifest["integrator"],
+        "restitution.spec": spec if len(spec) <= _MAX_SPEC_IN_FILE else f"(long: see {MANIFEST})",
+        "restitution.axes": json.dumps(manifest["axes"]),
+    }
+
+
+def _valid_part(out: Path, c: Chunk, digest: str) -> bool:
+    """A chunk file is valid when its footer reads and its metadata and row count match ``c``."""
+    path = out / part_name(c.index)
+    if not path.exists():
+        return False
+    try:
+        info = json.loads(pl.read_parquet_metadata(path)[META_KEY])
+        rows = pl.scan_parquet(path).select(pl.len()).collect().item()
+        ok = (info["spec_sha256"] == digest and info["index"] == c.index and info["start"] == c.start
+              and info["stop"] == c.stop and rows == c.stop - c.start)
+    except (OSError, KeyError, TypeError, ValueError, pl.exceptions.PolarsError):
+        ok = False
+    if not ok:
+        path.unlink()  # recomputed below; a stale file must not be read back as part of the sweep
+    return ok
+
+
+def _write_part(out: Path, c: Chunk, frame: pl.DataFrame, digest: str, meta: dict[str, str]) -> None:
+    info = json.dumps({"index": c.index, "start": c.start, "stop": c.stop, "spec_sha256": digest})
+    _atomic_write(out / part_name(c.index), lambda tmp: frame.write_parquet(tmp, metadata={**meta, META_KEY: info}))
+
+
+def _atomic_write(final: Path, write: Callable[[Path], Any]) -> None:
+    """Writes through a hidden temporary file and renames it: a visible file is always whole."""
+    tmp = final.with_name(f".{final.name}.{os.getpid()}.{threading.get_ident()}.tmp")
+    try:
+        write(tmp)
+        with open(tmp, "rb+") as f:
+            os.fsync(f.fileno())
+        os.replace(tmp, final)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def _remove_stale_tmp(out: Path) -> None:
+    """Temporary files of writers that died (killed mid-write); a live writer's are left alone."""
+    for entry in os.scandir(out):
+        m = _TMP.match(entry.name)
+        if m and not _pid_alive(int(m.group(1))):
+            Path(entry.path).unlink(missing_ok=True)
+
+
+def _pid_alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return False  # this process has no write in flight yet
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+class _Writer:
+    """Writes finished chunks on a thread, so the engine computes the next chunk meanwhile
+    (both release the GIL). The queue is short: memory holds at most a few chunks."""
+
+    def __init__(self, write: Callable[[Chunk, pl.DataFrame], None], depth: int = 2) -> None:
+        self._write, self._q = write, queue.Queue(maxsize=depth)  # type: ignore[var-annotated]
+        self._err: BaseException | None = None
+        self._thread = threading.Thread(target=self._loop, name="restitution-writer", daemon=True)
+        self._thread.start()
+
+    def _loop(self) -> None:
+        while True:
+            item = self._q.get()
+            if item is None:
+                return
+            if self._err is None:
+                try:
+                    self._write(*item)
+                except BaseException as err:  # noqa: BLE001 - handed to the main thread
+                    self._err = err
+
+    def put(self, c: Chunk, frame: pl.DataFrame) -> None:
+        if self._err is not None:
+            raise self._err
+        self._q.put((c, frame))
+
+    def close(self) -> None:
+        self._q.put(None)
+        self._thread.join()
+        if self._err is not None:
+            raise self._err
+
+
+__all__ = ["SweepResult", "missing_chunks", "read_dataset", "read_manifest", "scan_dataset", "sweep_to_dataset"]
