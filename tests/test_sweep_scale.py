@@ -104,9 +104,11 @@ def test_cases_table_gives_the_same_rows_as_the_product() -> None:
 
 
 def test_combined_rules_checked_across_axes() -> None:
-    with pytest.raises(ValueError, match=r"`dt_factor` in \(0, 0.5\] for the gear5"):
-        rs.sweep(CHEAP, theta_deg=30.0, dt_factor=[0.1, 0.8], integrator=["verlet", "gear5"])
-    rs.sweep(CHEAP, theta_deg=30.0, dt_factor=[0.8], integrator=["verlet"])  # fine for verlet alone
+    gear5, verlet = rs.MAX_DT_FACTOR["gear5"], rs.MAX_DT_FACTOR["verlet"]
+    assert gear5 < verlet
+    with pytest.raises(ValueError, match=rf"`dt_factor` in \(0, {gear5}\] for the gear5 integrator .*found {verlet}\)"):
+        rs.sweep(CHEAP, theta_deg=30.0, dt_factor=[gear5, verlet], integrator=["verlet", "gear5"])
+    rs.sweep(CHEAP, theta_deg=30.0, dt_factor=[verlet], integrator=["verlet"])  # fine for verlet alone
     with pytest.raises(ValueError, match=r"case 1: require `inertia` \"shape\" for polygons"):
         rs.sweep(CHEAP, cases=pl.DataFrame({"theta_deg": [30.0, 30.0], "n": [0, 5], "inertia": ["sphere"] * 2}))
     with pytest.raises(ValueError, match=r"require `normal_law` values in \"area\", \"linear\""):
