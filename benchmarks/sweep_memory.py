@@ -20,6 +20,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from typing import Any
 
 
 def _rss_mb() -> float:
@@ -38,7 +39,7 @@ def child(n: int, mode: str, threads: int, chunk_size: int) -> None:
     floor = _rss_mb()
     scene = rs.Scene(integrator="verlet", dt_factor=0.1)
     inner = 1000
-    axes = {"theta_deg": np.linspace(1.0, 90.0, n // inner), "omega_in": np.linspace(-1.0, 1.0, inner)}
+    axes: dict[str, Any] = {"theta_deg": np.linspace(1.0, 90.0, n // inner), "omega_in": np.linspace(-1.0, 1.0, inner)}
     t0 = time.perf_counter()
     if mode == "streamed":
         with tempfile.TemporaryDirectory() as d:
