@@ -14,7 +14,7 @@ NORMAL_LAWS = ("area", "linear")
 INERTIAS = ("shape", "sphere")
 
 #: Largest accepted ``dt_factor`` per integrator (the stability bound, with a margin; see docs).
-MAX_DT_FACTOR = {"gear5": 0.5, "verlet": 1.0, "reference": 1.0}
+MAX_DT_FACTOR = {"gear5": 0.03, "verlet": 0.1, "reference": 1.0}
 
 
 @dataclass(frozen=True, kw_only=True)
