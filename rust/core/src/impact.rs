@@ -199,10 +199,12 @@ fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Recor
             max_steps,
             trace,
         )),
-        Integrator::Reference => Err(Error::invalid(
-            "integrator",
-            "reference",
-            "one of \"gear5\", \"verlet\"",
+        Integrator::Reference => Ok(crate::reference::integrate(
+            model,
+            init,
+            depth_est,
+            &crate::reference::ReferenceOptions::default(),
+            trace,
         )),
     }
 }

@@ -38,7 +38,8 @@ pub enum Integrator {
     Gear5,
     /// Velocity Verlet; velocity-dependent forces see the predicted velocity v + a dt.
     Verlet,
-    /// High-accuracy reference (not yet available: returns an error).
+    /// High-accuracy reference: adaptive Dormand-Prince 5(4) with the contact's switches
+    /// located (see [`crate::reference`]); `dt_factor` is its largest step in units of t_ref.
     Reference,
 }
 
@@ -218,12 +219,6 @@ impl Model {
                 "in (0, {bound}] (stability bound of the {} integrator)",
                 scene.integrator.name()
             )
-        );
-        ensure_param!(
-            scene.integrator != Integrator::Reference,
-            "integrator",
-            "reference",
-            "one of \"gear5\", \"verlet\" (the reference integrator is not implemented yet)"
         );
         let r = scene.shape.circumradius();
         positive("r", r)?;

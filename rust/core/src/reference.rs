@@ -1,0 +1,1005 @@
+//! The high-accuracy reference integrator: adaptive Dormand-Prince 5(4) on the smooth pieces of
+//! the continuous-time contact law, every switch between pieces located and the integration
+//! restarted there.
+//!
+//! Why: the fixed-step integrators step across the non-smooth points of the law (touch and
+//! separation, a polygon corner crossing the plate, the normal-force clip switching on or off,
+//! stick <-> slip), so their error falls only like dt^1 ... dt^3 (MODEL.md, Time integration).
+//! Between those points the law is smooth, and a 5th-order method with error control converges
+//! at its full order there; locating each switch as a root of a continuous event function keeps
+//! the whole impact accurate to about the tolerance.
+//!
+//! The continuous-time law is the dt -> 0 limit of the discrete rule of MODEL.md:
+//! - Normal force: as in [`crate::contact`], clipped to zero while F_el + F_d < 0.
+//! - Cundall-Strack spring: while sticking dxi/dt = v_t and F_t = -k_t xi - c_t v_t with
+//!   |F_t| <= mu F_n; while slipping F_t = mu F_n s (s the sign of the trial force) and the spring
+//!   follows algebraically, xi = -(F_t + c_t v_t) / k_t. Slip ends when the trial force of a
+//!   sticking spring would move back inside the cone: s (dF_trial/dt) < mu dF_n/dt with
+//!   dF_trial/dt = -k_t v_t - c_t dv_t/dt (both rates taken along the motion).
+//! - While the normal force is clipped there is no tangential force and xi = -c_t v_t / k_t.
+//!
+//! Inside a piece the mode is *held*: the force formulas of the piece are continued smoothly
+//! a little beyond its end (a polygon's clipped region keeps its set of submerged corners, the
+//! clip its state), so that the Runge-Kutta stages never see a kink. The work of each force is
+//! integrated as three more components of the same ODE (the same stages), so the energy audit
+//! is accurate to the tolerance too.
+//!
+//! `dt_factor` means the largest (and the first) step, in units of t_ref; the accuracy is set
+//! by [`ReferenceOptions::tol`].
+
+use crate::contact::Forces;
+use crate::error::Result;
+use crate::geometry::{Overlap, Shape};
+use crate::impact::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::scene::{Initial, Model, NormalLaw, Scene};
+use crate::tangential::StickState;
+use nalgebra::Vector2;
+use std::f64::consts::PI;
+
+/// Settings of the reference integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ReferenceOptions {
+    /// Local error tolerance per step, relative to the natural scales of the impact (the
+    /// estimated maximal depth for positions, the impact speed for velocities, the kinetic
+    /// energy for works). Default 1e-12: global errors come out at about 20 tol.
+    pub tol: f64,
+    /// Largest step in units of t_ref; `None`: the scene's `dt_factor`.
+    pub max_step_factor: Option<f64>,
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        ReferenceOptions {
+            tol: 1e-12,
+            max_step_factor: None,
+        }
+    }
+}
+
+/// Simulates one impact with the reference integrator, whatever `scene.integrator` says.
+pub fn simulate_reference(
+    scene: &Scene,
+    init: &Initial,
+    opts: &ReferenceOptions,
+) -> Result<Record> {
+    let model = Model::new(scene)?;
+    model.check_initial(init)?;
+    let depth_est = estimate_max_depth(&model, init)?;
+    Ok(integrate(&model, init, depth_est, opts, None))
+}
+
+/// As [`simulate_reference`], and records every accepted step.
+pub fn simulate_reference_with_trace(
+    scene: &Scene,
+    init: &Initial,
+    opts: &ReferenceOptions,
+) -> Result<(Record, Trace)> {
+    let model = Model::new(scene)?;
+    model.check_initial(init)?;
+    let depth_est = estimate_max_depth(&model, init)?;
+    let mut trace = Trace::default();
+    let rec = integrate(&model, init, depth_est, opts, Some(&mut trace));
+    Ok((rec, trace))
+}
+
+// ---------------------------------------------------------------------------------------------
+// State and modes
+
+/// x, y, phi, vx, vy, omega, xi, then the works of the elastic, damping and tangential forces.
+const NS: usize = 10;
+type State = [f64; NS];
+const X: usize = 0;
+const Y: usize = 1;
+const PHI: usize = 2;
+const VX: usize = 3;
+const VY: usize = 4;
+const OM: usize = 5;
+const XI: usize = 6;
+const W_EL: usize = 7;
+const W_D: usize = 8;
+const W_T: usize = 9;
+
+/// Which overlap formula holds in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Touch {
+    /// No overlap: free flight.
+    Off,
+    /// The disc's circular segment.
+    Disc,
+    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
+    /// lowest of them (it matters for the linear law only).
+    Poly {
+        first: usize,
+        len: usize,
+        low: usize,
+    },
+}
+
+/// The tangential law in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Tan {
+    /// mu = 0 or no overlap.
+    None,
+    /// Spring and damper within the Coulomb cone; xi integrated.
+    Stick,
+    /// F_t = mu F_n s, s = +-1.
+    Slip(f64),
+    /// The normal force is clipped: no tangential force, xi = -c_t v_t / k_t.
+    Free,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Mode {
+    touch: Touch,
+    clip_on: bool,
+    tan: Tan,
+}
+
+/// The switches that end a piece. Each has a continuous event function that is <= 0 while
+/// the piece's mode holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Event {
+    Touch,
+    Separate,
+    EnterLeft,
+    EnterRight,
+    LeaveLeft,
+    LeaveRight,
+    LowLeft,
+    LowRight,
+    ClipOff,
+    ClipOn,
+    ToSlip,
+    ToStick,
+}
+
+/// Everything the force evaluation yields besides the derivative.
+#[derive(Debug, Clone, Copy, Default)]
+struct Eval {
+    forces: Forces,
+    /// F_el + F_d before the clip.
+    fn_raw: f64,
+    /// Tangential velocity of the contact point.
+    v_t: f64,
+    /// Trial force of a sticking spring, -k_t xi - c_t v_t.
+    trial: f64,
+    /// Depth of the lowest point (signed).
+    depth: f64,
+}
+
+// ---------------------------------------------------------------------------------------------
+// Dormand-Prince 5(4) tableau (Dormand & Prince 1980; dense output of Hairer, Norsett & Wanner)
+
+// The forces do not depend on time explicitly, so the nodes c_i are not needed.
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// 5th-order minus embedded 4th-order weights.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// Dense-output weights (4th-order continuous extension).
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// One accepted Runge-Kutta step with what its dense output needs.
+struct Step {
+    y0: State,
+    y1: State,
+    k: [State; 7],
+    h: f64,
+}
+
+impl Step {
+    /// The state at fraction `theta` of the step (4th-order interpolant).
+    fn at(&self, theta: f64) -> State {
+        let eta = 1.0 - theta;
+        std::array::from_fn(|i| {
+            let r2 = self.y1[i] - self.y0[i];
+            let r3 = self.h * self.k[0][i] - r2;
+            let r4 = r2 - self.h * self.k[6][i] - r3;
+            let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
+            self.y0[i] + theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)))
+        })
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The integrator
+
+struct Reference<'a> {
+    model: &'a Model,
+    verts: &'a [Vector2<f64>],
+    mu: f64,
+    /// Error scale of each state component (the tolerance multiplies it).
+    scale: State,
+    tol: f64,
+    /// Time step of the directional finite differences of the slip -> stick test.
+    fd_step: f64,
+}
+
+impl<'a> Reference<'a> {
+    fn linear(&self) -> Option<(f64, f64)> {
+        match self.model.scene.normal_law {
+            NormalLaw::Linear { kn, cn } => Some((kn, cn)),
+            NormalLaw::Area => None,
+        }
+    }
+
+    /// World position of corner `k` for centre height `y` and orientation (sin, cos):
+    /// x relative to the centre of mass, y absolute.
+    #[inline]
+    fn corner(&self, k: usize, y: f64, sc: (f64, f64)) -> (f64, f64) {
+        let v = &self.verts[k % self.verts.len()];
+        (sc.1 * v.x - sc.0 * v.y, y + sc.0 * v.x + sc.1 * v.y)
+    }
+
+    /// The overlap of a polygon whose submerged corners are held fixed: the crossing points on
+    /// the two boundary edges are placed on y = 0 by linear interpolation even when a held
+    /// corner has just risen above the plate (a smooth continuation of the clip).
+    fn held_polygon(&self, first: usize, len: usize, low: usize, y: f64, phi: f64) -> Overlap {
+        let n = self.verts.len();
+        let sc = phi.sin_cos();
+        let a = (first + n - 1) % n;
+        let last = (first + len - 1) % n;
+        let b = (last + 1) % n;
+        let crossing = |p: (f64, f64), q: (f64, f64)| {
+            let t = p.1 / (p.1 - q.1);
+            p.0 + t * (q.0 - p.0)
+        };
+        let p_first = self.corner(first, y, sc);
+        let p_last = self.corner(last, y, sc);
+        let xp = crossing(self.corner(a, y, sc), p_first);
+        let xq = crossing(p_last, self.corner(b, y, sc));
+        // Shoelace over P, corners, Q (relative to P for precision); the chord Q -> P closes it.
+        let (mut area2, mut mx, mut my) = (0.0, 0.0, 0.0);
+        let mut prev = (0.0, 0.0);
+        let mut depth = f64::NEG_INFINITY;
+        for j in 0..=len {
+            let cur = if j < len {
+                let c = self.corner(first + j, y, sc);
+                depth = depth.max(-c.1);
+                (c.0 - xp, c.1)
+            } else {
+                (xq - xp, 0.0)
+            };
+            let w = prev.0 * cur.1 - cur.0 * prev.1;
+            area2 += w;
+            mx += (prev.0 + cur.0) * w;
+            my += (prev.1 + cur.1) * w;
+            prev = cur;
+        }
+        let (cx, cy) = if area2.abs() > 0.0 {
+            (xp + mx / (3.0 * area2), my / (3.0 * area2))
+        } else {
+            (xp, 0.0)
+        };
+        let lowc = self.corner(low, y, sc);
+        let area = 0.5 * area2;
+        Overlap {
+            area,
+            cx,
+            cy,
+            chord: xq - xp,
+            x_mid: 0.5 * (xp + xq),
+            depth,
+            x_low: lowc.0,
+            first_moment: -area * cy,
+        }
+    }
+
+    /// Overlap in the held mode; `None` in free flight.
+    fn overlap(&self, touch: Touch, y: f64, phi: f64) -> Option<Overlap> {
+        match touch {
+            Touch::Off => None,
+            Touch::Disc => {
+                let r = self.model.r;
+                // Beyond the separation point the segment continues as nothing.
+                Some(self.model.scene.shape.overlap(y, phi).unwrap_or(Overlap {
+                    cy: y - r,
+                    depth: r - y,
+                    ..Overlap::default()
+                }))
+            }
+            Touch::Poly { first, len, low } => Some(self.held_polygon(first, len, low, y, phi)),
+        }
+    }
+
+    /// Forces and the time derivative of the state in mode `m`.
+    fn eval(&self, m: &Mode, s: &State) -> (State, Eval) {
+        let model = self.model;
+        let mut d = [0.0; NS];
+        d[X] = s[VX];
+        d[Y] = s[VY];
+        d[PHI] = s[OM];
+        let Some(o) = self.overlap(m.touch, s[Y], s[PHI]) else {
+            let depth = model.scene.shape.touch_height(s[PHI]) - s[Y];
+            return (
+                d,
+                Eval {
+                    depth,
+                    ..Eval::default()
+                },
+            );
+        };
+        let (vy, om) = (s[VY], s[OM]);
+        let (f_el, f_d, x_damp, depth) = match self.linear() {
+            None => (
+                model.scene.e_modulus * o.area / model.length,
+                model.area_damping * (-o.chord * (vy + om * o.x_mid)),
+                o.x_mid,
+                o.depth,
+            ),
+            Some((kn, cn)) => {
+                // The depth of the held lowest point (disc: r - y), continued smoothly.
+                let delta = self.low_depth(m.touch, s[Y], s[PHI]);
+                (kn * delta, cn * (-(vy + om * o.x_low)), o.cx, o.depth)
+            }
+        };
+        let fn_raw = f_el + f_d;
+        let (f_el, f_d) = if m.clip_on { (f_el, f_d) } else { (0.0, 0.0) };
+        let f_n = f_el + f_d;
+        let arm_y = o.cy - s[Y];
+        let v_t = s[VX] - om * arm_y;
+        let trial = -model.kt * s[XI] - model.ct * v_t;
+        let (f_t, stick) = match m.tan {
+            Tan::None => (0.0, StickState::None),
+            Tan::Free => (0.0, StickState::Slip),
+            Tan::Stick => (trial, StickState::Stick),
+            Tan::Slip(sg) => (self.mu * f_n * sg, StickState::Slip),
+        };
+        let torque = o.cx * f_el + x_damp * f_d - arm_y * f_t;
+        d[VX] = f_t / model.mass;
+        d[VY] = f_n / model.mass;
+        d[OM] = torque / model.inertia;
+        d[XI] = if m.tan == Tan::Stick { v_t } else { 0.0 };
+        d[W_EL] = f_el * (vy + om * o.cx);
+        d[W_D] = f_d * (vy + om * x_damp);
+        d[W_T] = f_t * v_t;
+        let forces = Forces {
+            fx: f_t,
+            fy: f_n,
+            torque,
+            f_el,
+            f_d,
+            f_t,
+            overlap: Some(o),
+            stick,
+            x_damp,
+        };
+        (
+            d,
+            Eval {
+                forces,
+                fn_raw,
+                v_t,
+                trial,
+                depth,
+            },
+        )
+    }
+
+    /// Depth of the held lowest corner of a polygon (linear law).
+    fn low_depth(&self, touch: Touch, y: f64, phi: f64) -> f64 {
+        match touch {
+            Touch::Poly { low, .. } => -self.corner(low, y, phi.sin_cos()).1,
+            Touch::Disc => self.model.r - y,
+            Touch::Off => 0.0,
+        }
+    }
+
+    /// The spring elongation the law implies: integrated while sticking, algebraic otherwise.
+    fn xi_of(&self, m: &Mode, s: &State, e: &Eval) -> f64 {
+        let (kt, ct) = (self.model.kt, self.model.ct);
+        match m.tan {
+            Tan::Stick => s[XI],
+            Tan::Slip(_) => -(e.forces.f_t + ct * e.v_t) / kt,
+            Tan::Free => -ct * e.v_t / kt,
+            Tan::None => 0.0,
+        }
+    }
+
+    /// One Dormand-Prince step from `y0` with first stage `k1`; returns the step and the
+    /// scaled error norm (<= 1: accepted).
+    fn dp_step(&self, m: &Mode, y0: &State, k1: &State, h: f64) -> (Step, f64) {
+        let mut k = [[0.0; NS]; 7];
+        k[0] = *k1;
+        for st in 1..7 {
+            let mut yi = *y0;
+            for i in 0..NS {
+                let mut acc = 0.0;
+                for j in 0..st {
+                    acc += A[st][j] * k[j][i];
+                }
+                yi[i] += h * acc;
+            }
+            k[st] = self.eval(m, &yi).0;
+        }
+        // The 7th stage is evaluated at the 5th-order solution itself (FSAL).
+        let mut y1 = *y0;
+        for i in 0..NS {
+            let mut acc = 0.0;
+            for j in 0..6 {
+                acc += A[6][j] * k[j][i];
+            }
+            y1[i] += h * acc;
+        }
+        // The spring elongation is not integrated outside stick (there it is algebraic).
+        let err = (0..NS)
+            .filter(|&i| i != XI || m.tan == Tan::Stick)
+            .map(|i| {
+                let e: f64 = h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>();
+                e.abs() / (self.tol * self.scale[i])
+            })
+            .fold(0.0, f64::max);
+        (Step { y0: *y0, y1, k, h }, err)
+    }
+
+    /// The events that can end a piece of mode `m`.
+    fn candidates(&self, m: &Mode) -> Vec<Event> {
+        let mut out = Vec::with_capacity(8);
+        match m.touch {
+            Touch::Off => {
+                out.push(Event::Touch);
+                return out;
+            }
+            Touch::Disc => out.push(Event::Separate),
+            Touch::Poly { first, len, low } => {
+                let n = self.verts.len();
+                if len + 1 < n {
+                    out.push(Event::EnterLeft);
+                    out.push(Event::EnterRight);
+                }
+                out.push(Event::LeaveLeft);
+                if len > 1 {
+                    out.push(Event::LeaveRight);
+                }
+                if self.linear().is_some() {
+                    let last = (first + len - 1) % n;
+                    if low != first {
+                        out.push(Event::LowLeft);
+                    }
+                    if low != last {
+                        out.push(Event::LowRight);
+                    }
+                }
+            }
+        }
+        out.push(if m.clip_on {
+            Event::ClipOff
+        } else {
+            Event::ClipOn
+        });
+        match m.tan {
+            Tan::Stick => out.push(Event::ToSlip),
+            Tan::Slip(_) => out.push(Event::ToStick),
+            Tan::None | Tan::Free => {}
+        }
+        out
+    }
+
+    /// The event function: > 0 once the piece's mode no longer holds.
+    fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        let (y, phi) = (s[Y], s[PHI]);
+        let n = self.verts.len().max(1);
+        let poly = |k: usize| self.corner(k, y, phi.sin_cos()).1;
+        match (ev, m.touch) {
+            (Event::Touch, _) => self.model.scene.shape.touch_height(phi) - y,
+            (Event::Separate, _) => y - self.model.r,
+            (Event::EnterLeft, Touch::Poly { first, .. }) => -poly(first + n - 1),
+            (Event::EnterRight, Touch::Poly { first, len, .. }) => -poly(first + len),
+            (Event::LeaveLeft, Touch::Poly { first, .. }) => poly(first),
+            (Event::LeaveRight, Touch::Poly { first, len, .. }) => poly(first + len - 1),
+            (Event::LowLeft, Touch::Poly { low, .. }) => poly(low) - poly(low + n - 1),
+            (Event::LowRight, Touch::Poly { low, .. }) => poly(low) - poly(low + 1),
+            (Event::ClipOff, _) => -self.eval(m, s).1.fn_raw,
+            (Event::ClipOn, _) => self.eval(m, s).1.fn_raw,
+            (Event::ToSlip, _) => {
+                let e = self.eval(m, s).1;
+                e.trial.abs() - self.mu * e.forces.fy
+            }
+            (Event::ToStick, _) => self.slip_to_stick(m, s),
+            _ => f64::NEG_INFINITY,
+        }
+    }
+
+    /// Positive when a sticking spring would stay inside the Coulomb cone: the value
+    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates by central differences along the
+    /// motion of the slipping body.
+    fn slip_to_stick(&self, m: &Mode, s: &State) -> f64 {
+        let Tan::Slip(sg) = m.tan else {
+            return f64::NEG_INFINITY;
+        };
+        let (d, e) = self.eval(m, s);
+        let mut h = self.fd_step;
+        if let (Touch::Disc, None) = (m.touch, self.linear()) {
+            // Keep both sample points inside the segment (no continuation beyond separation).
+            if e.depth <= 0.0 {
+                return f64::NEG_INFINITY;
+            }
+            h = h.min(0.25 * e.depth / s[VY].abs().max(f64::MIN_POSITIVE));
+        }
+        let shifted = |sign: f64| {
+            let mut p = *s;
+            for i in 0..6 {
+                p[i] += sign * h * d[i];
+            }
+            self.eval(m, &p).1
+        };
+        let (ep, em) = (shifted(1.0), shifted(-1.0));
+        let dfn = (ep.fn_raw - em.fn_raw) / (2.0 * h);
+        let a_t = (ep.v_t - em.v_t) / (2.0 * h);
+        self.mu * dfn + sg * (self.model.kt * e.v_t + self.model.ct * a_t)
+    }
+
+    /// Fraction of `step` at which event `ev` first fires (its function turns positive),
+    /// given that it fires at the end. Secant and bisection alternate on the dense output.
+    fn locate(&self, m: &Mode, ev: Event, step: &Step, g1: f64) -> f64 {
+        let g = |th: f64| self.event_value(m, ev, &step.at(th));
+        let g0 = self.event_value(m, ev, &step.y0);
+        if g0 > 0.0 {
+            return 0.0;
+        }
+        let (mut lo, mut hi, mut glo, mut ghi) = (0.0f64, 1.0f64, g0, g1);
+        for it in 0..200 {
+            if hi - lo <= 1e-14 {
+                break;
+            }
+            let mut th = if it % 2 == 0 && ghi > glo && glo.is_finite() && ghi.is_finite() {
+                lo + (hi - lo) * (-glo) / (ghi - glo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let w = hi - lo;
+            th = th.clamp(lo + 0.01 * w, hi - 0.01 * w);
+            let gm = g(th);
+            if gm > 0.0 {
+                hi = th;
+                ghi = gm;
+            } else {
+                lo = th;
+                glo = gm;
+            }
+        }
+        hi
+    }
+
+    /// The corners below the plate when a polygon first touches: the lowest one and its
+    /// neighbours that are not above the plate.
+    fn initial_run(&self, y: f64, phi: f64) -> Touch {
+        let n = self.verts.len();
+        let sc = phi.sin_cos();
+        let yk = |k: usize| self.corner(k, y, sc).1;
+        let low = (0..n).min_by(|&i, &j| yk(i).total_cmp(&yk(j))).unwrap_or(0);
+        let (mut first, mut len) = (low, 1);
+        while len + 2 < n && yk(first + n - 1) <= 0.0 {
+            first = (first + n - 1) % n;
+            len += 1;
+        }
+        while len + 2 < n && yk(first + len) <= 0.0 {
+            len += 1;
+        }
+        Touch::Poly { first, len, low }
+    }
+
+    /// The tangential mode when the normal force (re)appears: stick if the spring's trial
+    /// force is inside the cone, else slip in its direction. A wrong guess (both zero at first
+    /// touch) is corrected by the events at once.
+    fn initial_tan(&self, m: &Mode, s: &State) -> Tan {
+        if self.mu == 0.0 {
+            return Tan::None;
+        }
+        let probe = Mode {
+            tan: Tan::Stick,
+            ..*m
+        };
+        let e = self.eval(&probe, s).1;
+        let cap = self.mu * e.forces.fy.max(0.0);
+        if e.trial.abs() <= cap {
+            Tan::Stick
+        } else {
+            Tan::Slip(e.trial.signum())
+        }
+    }
+}
+
+fn kinetic_energy(model: &Model, s: &State) -> f64 {
+    0.5 * model.mass * (s[VX] * s[VX] + s[VY] * s[VY]) + 0.5 * model.inertia * s[OM] * s[OM]
+}
+
+/// Bookkeeping of one impact that is not part of the ODE state.
+#[derive(Default)]
+struct Tally {
+    contact_start: f64,
+    contact_time: f64,
+    contacts: u32,
+    slip_events: u64,
+    stuck: bool,
+    max_depth: f64,
+    max_area: f64,
+}
+
+/// Integrates one impact from first touch (validated scene and initial state).
+pub(crate) fn integrate(
+    model: &Model,
+    init: &Initial,
+    depth_est: f64,
+    opts: &ReferenceOptions,
+    mut trace: Option<&mut Trace>,
+) -> Record {
+    let shape = &model.scene.shape;
+    let r = model.r;
+    let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
+    let t_est = PI * depth_est / init.vy.abs();
+    let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
+    let energy_in = 0.5 * model.mass * (init.vx * init.vx + init.vy * init.vy)
+        + 0.5 * model.inertia * init.omega * init.omega;
+    let force_scale = model.mass * speed / t_est;
+    let mut scale = [0.0; NS];
+    scale[X] = depth_est;
+    scale[Y] = depth_est;
+    scale[PHI] = depth_est / r;
+    scale[VX] = speed;
+    scale[VY] = speed;
+    scale[OM] = speed / r;
+    scale[XI] = force_scale / model.kt;
+    scale[W_EL] = energy_in;
+    scale[W_D] = energy_in;
+    scale[W_T] = energy_in;
+    let verts = shape.vertices();
+    let ode = Reference {
+        model,
+        verts,
+        mu: model.scene.mu,
+        scale,
+        tol: opts.tol,
+        fd_step: 1e-5 * t_est,
+    };
+    let t_end = TIMEOUT_CONTACT_TIMES * t_est;
+    let max_steps = (t_end / h_max).ceil().min(1e12) as u64 + 10_000;
+    let n_corners = verts.len();
+
+    let mut s: State = [0.0; NS];
+    s[Y] = shape.touch_height(init.phi0);
+    s[PHI] = init.phi0;
+    s[VX] = init.vx;
+    s[VY] = init.vy;
+    s[OM] = init.omega;
+    let touch = match shape {
+        Shape::Disc { .. } => Touch::Disc,
+        Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
+    };
+    let mut mode = Mode {
+        touch,
+        clip_on: true,
+        tan: Tan::None,
+    };
+    mode.tan = ode.initial_tan(&mode, &s);
+    let mut tally = Tally {
+        contacts: 1,
+        ..Tally::default()
+    };
+    let mut t = 0.0;
+    let mut steps: u64 = 0;
+    let mut attempts: u64 = 0;
+    let mut h = h_max;
+    let mut zero_pieces = 0u32;
+    let mut timed_out = false;
+
+    let (mut k1, e0) = ode.eval(&mode, &s);
+    if let Some(tr) = trace.as_deref_mut() {
+        push(tr, 0.0, &s, &e0, ode.xi_of(&mode, &s, &e0));
+    }
+    loop {
+        // Done once no part of the particle can reach the plate: its circumscribed circle is
+        // clear and moving away, or every point of it moves away (v_y > r |omega|).
+        if mode.touch == Touch::Off && s[VY] > 0.0 && (s[Y] >= r || s[VY] > r * s[OM].abs()) {
+            break;
+        }
+        if t >= t_end || steps >= max_steps || attempts >= 20 * max_steps {
+            timed_out = true;
+            break;
+        }
+        h = h.min(h_max);
+        if mode.touch == Touch::Off && n_corners > 0 && s[OM] != 0.0 {
+            // In flight a polygon may hit again by turning a corner into the plate: step
+            // finely enough (a quarter of the angle between corners) not to miss it.
+            h = h.min(0.25 * (2.0 * PI / n_corners as f64) / s[OM].abs());
+        }
+        let (step, err) = ode.dp_step(&mode, &s, &k1, h);
+        attempts += 1;
+        let h_min = 1e-13 * t_est;
+        if err > 1.0 && h > h_min {
+            h = (h * (0.9 * err.powf(-0.2)).max(0.2)).max(h_min);
+            continue;
+        }
+        let h_next = h * (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
+        // Events: the earliest switch inside the step ends the piece there.
+        let mut first: Option<(f64, Event)> = None;
+        if zero_pieces < 16 {
+            for ev in ode.candidates(&mode) {
+                let g1 = ode.event_value(&mode, ev, &step.y1);
+                if g1 > 0.0 {
+                    let th = ode.locate(&mode, ev, &step, g1);
+                    if first.is_none_or(|(t0, _)| th < t0) {
+                        first = Some((th, ev));
+                    }
+                }
+            }
+        }
+        let (s_new, h_taken, event) = match first {
+            None => (step.y1, h, None),
+            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev)),
+            Some((th, ev)) if th * h <= 0.0 => (s, 0.0, Some(ev)),
+            Some((th, ev)) => {
+                // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
+                let (st, _) = ode.dp_step(&mode, &s, &k1, th * h);
+                (st.y1, th * h, Some(ev))
+            }
+        };
+        if event.is_none() {
+            zero_pieces = 0;
+        }
+        if h_taken > 0.0 {
+            steps += 1;
+            zero_pieces = 0;
+            // Only a stick phase of positive length counts for slip events (a guess of stick
+            // at first touch that the events correct at once is no micro-slip).
+            tally.stuck |= mode.tan == Tan::Stick;
+            // The deepest point inside the step (where the depth stops growing).
+            track_extremes(&ode, &mode, &step, h_taken / h, &mut tally);
+        } else {
+            zero_pieces += 1;
+        }
+        t += h_taken;
+        s = s_new;
+        if let Some(ev) = event {
+            apply(&ode, &mut mode, ev, &mut s, t, &mut tally);
+        }
+        let (k, e) = ode.eval(&mode, &s);
+        k1 = k;
+        tally.max_depth = tally.max_depth.max(e.depth);
+        if let Some(o) = e.forces.overlap {
+            tally.max_area = tally.max_area.max(o.area);
+        }
+        if let Some(tr) = trace.as_deref_mut() {
+            if h_taken > 0.0 {
+                push(tr, t, &s, &e, ode.xi_of(&mode, &s, &e));
+            }
+        }
+        h = if event.is_some() {
+            h_next.min(h)
+        } else {
+            h_next
+        };
+    }
+    if mode.touch != Touch::Off {
+        tally.contact_time += t - tally.contact_start;
+    }
+    let energy_out = kinetic_energy(model, &s);
+    let work_normal = s[W_EL] + s[W_D];
+    let work_friction = s[W_T];
+    let (vx, vy, om) = (s[VX], s[VY], s[OM]);
+    let v_cp = init.vx + r * init.omega;
+    Record {
+        e_n: -vy / init.vy,
+        e_t: (init.vx != 0.0).then(|| vx / init.vx),
+        e_kin: vx.hypot(vy) / init.vx.hypot(init.vy),
+        omega_out: om,
+        beta: (v_cp != 0.0).then(|| -(vx + r * om) / v_cp),
+        rebound_angle_deg: vy.atan2(vx).to_degrees(),
+        vx_out: vx,
+        vy_out: vy,
+        contact_time: tally.contact_time,
+        steps,
+        contacts: tally.contacts,
+        max_depth: tally.max_depth,
+        max_area: tally.max_area,
+        slip_events: tally.slip_events,
+        energy_in,
+        energy_out,
+        work_normal,
+        work_friction,
+        energy_residual: (energy_out - energy_in - work_normal - work_friction) / energy_in,
+        separated: !timed_out,
+        timed_out,
+    }
+}
+
+/// Updates the largest depth and area with their maxima inside the taken part of a step:
+/// where a parabola through three samples peaks inside the step, a golden-section search on
+/// the dense output finds the peak (the depth peaks where its rate changes sign).
+fn track_extremes(ode: &Reference, m: &Mode, step: &Step, frac: f64, tally: &mut Tally) {
+    if m.touch == Touch::Off {
+        return;
+    }
+    let sample = |th: f64| {
+        let e = ode.eval(m, &step.at(th)).1;
+        (e.depth, e.forces.overlap.map_or(0.0, |o| o.area))
+    };
+    tally.max_depth = tally.max_depth.max(peak(|th| sample(th).0, frac));
+    tally.max_area = tally.max_area.max(peak(|th| sample(th).1, frac));
+}
+
+/// Largest value of `f` on [0, frac] when it peaks inside; -inf otherwise (the ends are
+/// recorded as step ends).
+fn peak(f: impl Fn(f64) -> f64, frac: f64) -> f64 {
+    let (f0, fm, f1) = (f(0.0), f(0.5 * frac), f(frac));
+    // Parabola through the three samples: concave with its vertex within the step (a little
+    // margin, so that a peak just past a sample is not missed).
+    let curv = f0 - 2.0 * fm + f1;
+    if curv >= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let vertex = 0.5 + 0.25 * (f0 - f1) / curv;
+    if !(-0.1..=1.1).contains(&vertex) {
+        return f64::NEG_INFINITY;
+    }
+    let (mut a, mut b) = (0.0, frac);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if b - a <= 1e-15 * frac.max(1e-300) {
+            break;
+        }
+        if fc > fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    fc.max(fd).max(f0).max(f1)
+}
+
+/// Switches the mode at an event and sets the algebraic part of the state.
+fn apply(ode: &Reference, m: &mut Mode, ev: Event, s: &mut State, t: f64, tally: &mut Tally) {
+    let model = ode.model;
+    let (kt, ct) = (model.kt, model.ct);
+    let n = ode.verts.len().max(1);
+    let e = ode.eval(m, s).1;
+    match ev {
+        Event::Touch => {
+            m.touch = match model.scene.shape {
+                Shape::Disc { .. } => Touch::Disc,
+                Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
+            };
+            m.clip_on = true;
+            s[XI] = 0.0;
+            m.tan = Tan::None;
+            m.tan = ode.initial_tan(m, s);
+            tally.contacts += 1;
+            tally.contact_start = t;
+            tally.stuck = false;
+        }
+        Event::Separate => separate(m, s, t, tally),
+        Event::EnterLeft | Event::EnterRight | Event::LeaveLeft | Event::LeaveRight => {
+            if let Touch::Poly { first, len, low } = m.touch {
+                let (first, len) = match ev {
+                    Event::EnterLeft => ((first + n - 1) % n, len + 1),
+                    Event::EnterRight => (first, len + 1),
+                    Event::LeaveLeft => ((first + 1) % n, len - 1),
+                    _ => (first, len - 1),
+                };
+                if len == 0 {
+                    separate(m, s, t, tally);
+                } else {
+                    // Keep the lowest corner inside the run.
+                    let inside = (low + n - first) % n < len;
+                    let low = if inside { low } else { first };
+                    m.touch = Touch::Poly { first, len, low };
+                }
+            }
+        }
+        Event::LowLeft | Event::LowRight => {
+            if let Touch::Poly { first, len, low } = m.touch {
+                let low = if ev == Event::LowLeft {
+                    (low + n - 1) % n
+                } else {
+                    (low + 1) % n
+                };
+                m.touch = Touch::Poly { first, len, low };
+            }
+        }
+        Event::ClipOff => {
+            m.clip_on = false;
+            if ode.mu > 0.0 {
+                m.tan = Tan::Free;
+                s[XI] = -ct * e.v_t / kt;
+            }
+        }
+        Event::ClipOn => {
+            m.clip_on = true;
+            m.tan = ode.initial_tan(m, s);
+        }
+        Event::ToSlip => {
+            let sg = if e.trial != 0.0 {
+                e.trial.signum()
+            } else {
+                -e.v_t.signum()
+            };
+            m.tan = Tan::Slip(sg);
+            s[XI] = -(ode.mu * e.forces.fy * sg + ct * e.v_t) / kt;
+            if tally.stuck {
+                tally.slip_events += 1;
+            }
+        }
+        Event::ToStick => {
+            // The spring takes over the force it carried while slipping.
+            s[XI] = -(e.forces.f_t + ct * e.v_t) / kt;
+            m.tan = Tan::Stick;
+        }
+    }
+}
+
+fn separate(m: &mut Mode, s: &mut State, t: f64, tally: &mut Tally) {
+    m.touch = Touch::Off;
+    m.clip_on = false;
+    m.tan = Tan::None;
+    s[XI] = 0.0;
+    tally.contact_time += t - tally.contact_start;
+}
+
+fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
+    tr.t.push(t);
+    tr.x.push(s[X]);
+    tr.y.push(s[Y]);
+    tr.phi.push(s[PHI]);
+    tr.vx.push(s[VX]);
+    tr.vy.push(s[VY]);
+    tr.omega.push(s[OM]);
+    tr.f_n.push(e.forces.f_el + e.forces.f_d);
+    tr.f_t.push(e.forces.f_t);
+    tr.area.push(e.forces.overlap.map_or(0.0, |o| o.area));
+    tr.depth.push(e.depth);
+    tr.stick.push(e.forces.stick.code());
+    tr.xi.push(xi);
+}
