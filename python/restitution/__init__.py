@@ -12,6 +12,7 @@ from .shapes import ConvexPolygon, Disc, RegularPolygon
 from .simulate import Record, simulate
 from .dataset import read_dataset, sweep_to_dataset
 from .sweep import sweep
+from . import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
 
 __all__ = [
     "ConvexPolygon",
@@ -21,8 +22,12 @@ __all__ = [
     "RegularPolygon",
     "Scene",
     "__version__",
+    "analysis",
+    "calibrate",
+    "inverse",
     "read_dataset",
     "simulate",
     "sweep",
     "sweep_to_dataset",
+    "theory",
 ]

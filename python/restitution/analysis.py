@@ -223,6 +223,8 @@ class ExpFit:
     chi2: float
     dof: int
     n: int
+    x_range: tuple[float, float] = (float("-inf"), float("inf"))
+    """Smallest and largest x fitted (outside it the curve is an extrapolation)."""
 
     @property
     def params(self) -> tuple[float, float, float]:
@@ -317,7 +319,7 @@ def fit_exp(x: Any, y: Any, sigma: Any = None, *, absolute_sigma: bool | None = 
         cov = cov * (chi2 / dof)
     err = np.sqrt(np.clip(np.diag(cov), 0.0, None))
     return ExpFit(float(p[0]), float(p[1]), float(p[2]), (float(err[0]), float(err[1]), float(err[2])), cov,
-                  float(chi2), dof, int(xa.size))
+                  float(chi2), dof, int(xa.size), (float(xa.min()), float(xa.max())))
 
 
 def _levenberg_marquardt(p: np.ndarray, x: np.ndarray, y: np.ndarray, w: np.ndarray,

@@ -201,9 +201,11 @@ def fig4(crit: pl.DataFrame, fits: dict[str, ExpFit], *, theory_e_n: float | Non
     f = fits.get("theta_c")
     if f is not None:
         ea, eb, ec = f.errors
-        ax.plot(grid[grid < mu.min()], f(grid[grid < mu.min()]), color=OKABE_ITO[5], lw=1.2, ls=":")
-        ax.plot(grid[grid >= mu.min()], f(grid[grid >= mu.min()]), color=OKABE_ITO[5], lw=1.5,
-                label=rf"fit: {f.a:.1f}$\pm${ea:.1f} exp(-{f.b:.2f}$\pm${eb:.2f} $\mu$) + {f.c:.2f}$\pm${ec:.2f}")
+        inside = (grid >= f.x_range[0]) & (grid <= f.x_range[1])
+        ax.plot(grid[grid <= f.x_range[0]], f(grid[grid <= f.x_range[0]]), color=OKABE_ITO[5], lw=1.2, ls=":")
+        ax.plot(grid[inside], f(grid[inside]), color=OKABE_ITO[5], lw=1.5,
+                label=rf"fit: {f.a:.1f}$\pm${ea:.1f} exp(-{f.b:.2f}$\pm${eb:.2f} $\mu$) + {f.c:.2f}$\pm${ec:.2f}"
+                      + rf" ($\mu \geq$ {f.x_range[0]:g})")
     s = STUDY_FITS["theta_c"]
     ax.plot(grid, s["a"][0] * np.exp(-s["b"][0] * grid) + s["c"][0], color="grey", lw=1.5, ls="-.",
             label="study's fit: 73.45 exp(-5.44 $\\mu$) + 16.26")
@@ -221,9 +223,11 @@ def fig4(crit: pl.DataFrame, fits: dict[str, ExpFit], *, theory_e_n: float | Non
     f = fits.get("e_kin_min")
     if f is not None:
         ea, eb, ec = f.errors
-        ax.plot(grid[grid < mu.min()], f(grid[grid < mu.min()]), color=OKABE_ITO[3], lw=1.2, ls=":")
-        ax.plot(grid[grid >= mu.min()], f(grid[grid >= mu.min()]), color=OKABE_ITO[3], lw=1.5,
-                label=rf"fit: {f.a:.3f}$\pm${ea:.3f} exp(-{f.b:.2f}$\pm${eb:.2f} $\mu$) + {f.c:.3f}$\pm${ec:.3f}")
+        inside = (grid >= f.x_range[0]) & (grid <= f.x_range[1])
+        ax.plot(grid[grid <= f.x_range[0]], f(grid[grid <= f.x_range[0]]), color=OKABE_ITO[3], lw=1.2, ls=":")
+        ax.plot(grid[inside], f(grid[inside]), color=OKABE_ITO[3], lw=1.5,
+                label=rf"fit: {f.a:.3f}$\pm${ea:.3f} exp(-{f.b:.2f}$\pm${eb:.2f} $\mu$) + {f.c:.3f}$\pm${ec:.3f}"
+                      + rf" ($\mu \geq$ {f.x_range[0]:g})")
     s = STUDY_FITS["e_kin_min"]
     ax.plot(grid, s["a"][0] * np.exp(-s["b"][0] * grid) + s["c"][0], color="grey", lw=1.5, ls="-.",
             label="study's fit: 0.22 exp(-4.07 $\\mu$) + 0.68")
@@ -242,15 +246,16 @@ def fig4(crit: pl.DataFrame, fits: dict[str, ExpFit], *, theory_e_n: float | Non
 
 def fig5(df: pl.DataFrame, *, r: float = theory.R_PAPER, v: float = theory.V_PAPER, path: Any = None,
          title: str | None = None):
-    """Fig. 5: e_T (top) and e_kin (bottom) against theta for every omega_in of ``df`` (a sweep over
-    theta_deg, mu and omega_in in rad/s; shown in deg/s), one column per mu, rigid body dashed."""
+    """Fig. 5: e_T (top: full range; middle: zoom on 0.35 ... 1.1) and e_kin (bottom) against theta
+    for every omega_in of ``df`` (a sweep over theta_deg, mu and omega_in in rad/s; shown in
+    deg/s), one column per mu, rigid body dashed."""
     plt = _plt()
     mus = sorted(df["mu"].unique().to_list())
     oms = sorted(df["omega_in"].unique().to_list())
     deg = {o: float(np.round(np.degrees(o), 6)) for o in oms}
     col = spin_colours(list(deg.values()))
-    fig, axes = plt.subplots(2, len(mus), figsize=(6.2 * len(mus), 8.0), constrained_layout=True, squeeze=False,
-                             sharex=True)
+    fig, axes = plt.subplots(3, len(mus), figsize=(6.2 * len(mus), 11.0), constrained_layout=True, squeeze=False,
+                             sharex=True, gridspec_kw={"height_ratios": [1.0, 0.9, 1.0]})
     for j, mu in enumerate(mus):
         sub = df.filter(pl.col("mu") == mu)
         for key, part in _curves(sub):
@@ -258,25 +263,30 @@ def fig5(df: pl.DataFrame, *, r: float = theory.R_PAPER, v: float = theory.V_PAP
             th = part["theta_deg"].to_numpy()
             c = col[deg[o]]
             lab = f"{deg[o]:+g}" if deg[o] else "0"
-            axes[0, j].plot(th, part["e_t"].to_numpy().astype(float), color=c, lw=1.5, label=lab)
-            axes[1, j].plot(th, part["e_kin"].to_numpy(), color=c, lw=1.5, label=lab)
-            for i, fn in ((0, theory.e_t), (1, theory.e_kin)):
+            e_t = part["e_t"].to_numpy().astype(float)
+            axes[0, j].plot(th, e_t, color=c, lw=1.5, label=lab)
+            axes[1, j].plot(th, e_t, color=c, lw=1.5)
+            axes[2, j].plot(th, part["e_kin"].to_numpy(), color=c, lw=1.5)
+            for i, fn in ((0, theory.e_t), (1, theory.e_t), (2, theory.e_kin)):
                 tt, yy = _theory_for(part, fn, mu, o, r=r, v=v)
                 axes[i, j].plot(tt, yy, **THEORY_STYLE)
         axes[0, j].set_title(rf"$\mu$ = {mu:g}")
         axes[0, j].set_ylabel(r"tangential restitution $e_T$")
-        axes[1, j].set_ylabel(r"kinematic restitution $e_{kin}$")
-        axes[1, j].set_xlabel(THETA_LABEL)
-        axes[0, j].axhline(1.0, color="grey", lw=0.6)
-        axes[0, j].axhline(0.0, color="grey", lw=0.6)
+        axes[1, j].set_ylabel(r"$e_T$ (zoom)")
+        axes[1, j].set_ylim(0.35, 1.1)
+        axes[2, j].set_ylabel(r"kinematic restitution $e_{kin}$")
+        axes[2, j].set_xlabel(THETA_LABEL)
         for i in range(2):
+            axes[i, j].axhline(1.0, color="grey", lw=0.6)
+        axes[0, j].axhline(0.0, color="grey", lw=0.6)
+        for i in range(3):
             axes[i, j].set_xlim(0, 90)
     h, lab = axes[0, 0].get_legend_handles_labels()
     h.append(plt.Line2D([], [], **{k: v for k, v in THEORY_STYLE.items() if k != "zorder"}))
     lab.append("rigid body")
     axes[0, 0].legend(h, lab, title=r"$\omega_{in}$ (deg/s)", fontsize=7, loc="upper left", ncol=2)
-    for i, letter in enumerate("abcd"):
-        axes.flat[i].set_title(f"({letter})", loc="left")
+    for i, ax in enumerate(axes.flat):
+        ax.set_title(f"({'abcdefgh'[i]})", loc="left")
     if title:
         fig.suptitle(title)
     _save(fig, path)
@@ -285,10 +295,11 @@ def fig5(df: pl.DataFrame, *, r: float = theory.R_PAPER, v: float = theory.V_PAP
 
 def inverse_figure(solutions: pl.DataFrame, df: pl.DataFrame | None = None, *, quantity: str = "e_t",
                    value: float | None = None, tol: float = 0.0, path: Any = None, title: str | None = None,
-                   reference: dict[float, list[float]] | None = None):
+                   reference: dict[float, list[float]] | None = None, r: float = theory.R_PAPER,
+                   v: float = theory.V_PAPER):
     """The inverse map: (left, when ``df`` is given) the curves with the band value +- tol and the
-    solutions; (right) the solutions as theta against omega_in (deg/s), one marker per mu, with
-    the tolerance as a horizontal bar. ``reference`` ({omega_in deg/s: [theta, ...]}) adds the
+    solutions, rigid-body theory thin dashed; (right) the solutions as theta against omega_in
+    (deg/s), one marker per mu, with the tolerance as a horizontal bar. ``reference`` ({omega_in deg/s: [theta, ...]}) adds the
     study's quoted angles as crosses."""
     plt = _plt()
     ncols = 2 if df is not None else 1
@@ -312,6 +323,10 @@ def inverse_figure(solutions: pl.DataFrame, df: pl.DataFrame | None = None, *, q
             c = col[o] if "omega_in" in sub.columns else OKABE_ITO[5]
             ax.plot(part["theta_deg"].to_numpy(), part[quantity].to_numpy().astype(float), color=c, lw=1.3,
                     label=f"{o:+g}" if o else "0")
+            fn = {"e_t": theory.e_t, "e_kin": theory.e_kin, "omega_out": theory.omega_out}.get(quantity)
+            if fn is not None and "mu" in key and "e_n" in part.columns:
+                tt, yy = _theory_for(part, fn, float(key["mu"]), float(key.get("omega_in", 0.0)), r=r, v=v)
+                ax.plot(tt, yy, **{**THEORY_STYLE, "lw": 0.7})
         if value is not None:
             ax.axhspan(value - tol, value + tol, color=OKABE_ITO[1], alpha=0.35, lw=0)
             ax.axhline(value, color=OKABE_ITO[1], lw=1.0)
@@ -323,7 +338,10 @@ def inverse_figure(solutions: pl.DataFrame, df: pl.DataFrame | None = None, *, q
         ax.set_xlim(0, 90)
         if value is not None:
             ax.set_ylim(value - 0.6, value + 0.8)
-        ax.legend(title=r"$\omega_{in}$ (deg/s)", fontsize=7, ncol=2, loc="lower left")
+        h, lab = ax.get_legend_handles_labels()
+        h.append(plt.Line2D([], [], **{k: v_ for k, v_ in THEORY_STYLE.items() if k != "zorder"}))
+        lab.append("rigid body")
+        ax.legend(h, lab, title=r"$\omega_{in}$ (deg/s)", fontsize=7, ncol=2, loc="lower left")
     ax = axes[-1]
     mus = sorted(solutions["mu"].unique().to_list()) if has_mu else [None]
     markers = ["o", "s", "^", "D", "v"]

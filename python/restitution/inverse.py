@@ -158,13 +158,15 @@ def find(df: pl.DataFrame, quantity: str, value: float, tol: float = 0.0) -> pl.
 
 
 def plot(solutions: pl.DataFrame, df: pl.DataFrame | None = None, *, quantity: str = "e_t", value: float | None = None,
-         tol: float = 0.0, path: Any = None, title: str | None = None):
+         tol: float = 0.0, path: Any = None, title: str | None = None, **kwargs: Any):
     """Draws an inverse-map result: the curves of ``df`` (when given) with the band value +- tol
     and the solutions marked, and the solutions in the (theta, omega_in) plane (or theta alone).
-    Returns the matplotlib figure; saves it when ``path`` is given."""
+    Returns the matplotlib figure; saves it when ``path`` is given. Other keywords (``r``, ``v``
+    for the theory curves, ``reference``) go to :func:`restitution.figures.inverse_figure`."""
     from . import figures
 
-    return figures.inverse_figure(solutions, df, quantity=quantity, value=value, tol=tol, path=path, title=title)
+    return figures.inverse_figure(solutions, df, quantity=quantity, value=value, tol=tol, path=path, title=title,
+                                  **kwargs)
 
 
 __all__ = ["find", "plot"]
