@@ -22,7 +22,7 @@ RECORD_COLUMNS = ("e_n", "e_t", "e_kin", "omega_out", "beta", "rebound_angle_deg
 #: Axes whose values are names; the engine gets their index in these tuples. ``integrator``
 #: is a per-case engine column; ``normal_law`` and ``inertia`` are per call, so a sweep over
 #: them runs one engine call per value group (see :func:`restitution.sweep.run_per_case`).
-CHOICE_AXES = {"integrator": INTEGRATORS[:2], "normal_law": NORMAL_LAWS, "inertia": INERTIAS}
+CHOICE_AXES = {"integrator": INTEGRATORS, "normal_law": NORMAL_LAWS, "inertia": INERTIAS}
 
 #: Names accepted as sweep axes (``n``: the shape, 0 for an exact disc, >= 3 for a regular n-gon).
 AXES = FLOAT_COLUMNS + ("n",) + tuple(CHOICE_AXES)
