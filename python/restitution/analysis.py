@@ -17,7 +17,9 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Sequence
+from typing import Any
+
+from numpy.typing import ArrayLike
 
 import numpy as np
 import polars as pl
@@ -71,7 +73,7 @@ def _line(x0: float, y0: float, x1: float, y1: float) -> tuple[float, float]:
     return s, y0 - s * x0
 
 
-def locate_min(x: Sequence[float], y: Sequence[float], method: str = "auto") -> Extremum:
+def locate_min(x: ArrayLike, y: ArrayLike, method: str = "auto") -> Extremum:
     """The minimum of the sampled curve ``y(x)`` between grid points.
 
     A kink (the corner where the sliding and rolling branches meet) and a smooth minimum need
@@ -147,7 +149,7 @@ def locate_min(x: Sequence[float], y: Sequence[float], method: str = "auto") -> 
     return Extremum(float(xs), float(min(ys, ya[i])), name, i)
 
 
-def locate_max(x: Sequence[float], y: Sequence[float], method: str = "auto") -> Extremum:
+def locate_max(x: ArrayLike, y: ArrayLike, method: str = "auto") -> Extremum:
     """The maximum of ``y(x)``, as :func:`locate_min` of ``-y``."""
     e = locate_min(x, -np.asarray(y, dtype=float), method)
     return Extremum(e.x, -e.y, e.method, e.index)
@@ -166,7 +168,7 @@ def critical_angles(df: pl.DataFrame, *, method: str = "auto", r: float | None =
     Returns one row per curve: the group's axes, ``theta_c``, ``omega_out_max`` (signed value at
     the peak of |omega_out|), ``theta_e_kin_min``, ``e_kin_min``, ``e_n_at_theta_c`` (interpolated),
     ``theta_c_theory`` (rigid body with that e_N and the curve's omega_in), and the locating
-    methods. Curves whose extremum is at the end of the grid (mu = 0) give nulls.
+    methods. Curves whose extremum is at the end of the grid, and mu = 0, give nulls.
     """
     rows = []
     for key, part in _curves(df):
@@ -179,7 +181,10 @@ def critical_angles(df: pl.DataFrame, *, method: str = "auto", r: float | None =
             raise ValueError(f"require at least 3 theta values per curve (found {len(th)} for {key})")
         wmax = locate_max(th, np.abs(w), method)
         emin = locate_min(th, ek, method)
-        interior_w = wmax.method != "edge" and wmax.y > 0.0
+        mu = float(key.get("mu", np.nan))
+        # Without friction there is no rolling regime: a polygon's tiny corner-induced spin has
+        # peaks, but none of them is theta_c.
+        interior_w = wmax.method != "edge" and wmax.y > 0.0 and mu != 0.0
         row["theta_c"] = wmax.x if interior_w else None
         row["omega_out_max"] = float(np.sign(w[wmax.index]) * wmax.y) if interior_w else None
         row["theta_c_method"] = wmax.method
@@ -188,7 +193,6 @@ def critical_angles(df: pl.DataFrame, *, method: str = "auto", r: float | None =
         row["e_kin_min_method"] = emin.method
         en_c = float(np.interp(wmax.x, th, en)) if interior_w else None
         row["e_n_at_theta_c"] = en_c
-        mu = float(key.get("mu", np.nan))
         if interior_w and np.isfinite(mu):
             rr = float(key.get("r", r if r is not None else theory.R_PAPER))
             vv = float(key.get("v", v if v is not None else theory.V_PAPER))

@@ -30,7 +30,7 @@ STUDY_FITS = {
 }
 
 THETA_LABEL = r"impact angle $\theta$ (deg, from the plate)"
-THEORY_STYLE = dict(color="black", lw=0.9, ls=(0, (4, 2)), zorder=5)
+THEORY_STYLE: dict[str, Any] = dict(color="black", lw=0.9, ls=(0, (4, 2)), zorder=5)
 
 
 def _plt():
@@ -130,10 +130,10 @@ def fig2(df: pl.DataFrame, gamma_df: pl.DataFrame | None = None, *, r: float = t
         ax.set_xlim(0, 90)
         ax.set_title(f"({letter})", loc="left")
     axes[1].set_ylim(0.55, 1.02)
-    axes[2].set_ylim(min(0.6, float(df["e_kin"].min()) - 0.02), 1.02)
+    axes[2].set_ylim(min(0.6, float(df["e_kin"].to_numpy().min()) - 0.02), 1.02)
     # Legends: mu colours in (b); line styles (theory, damping variants) in (c).
     h, lab = axes[1].get_legend_handles_labels()
-    seen = {}
+    seen: dict[str, Any] = {}
     for hh, ll in zip(h, lab):
         seen.setdefault(ll, hh)
     axes[1].legend(seen.values(), seen.keys(), title=r"$\mu$", ncol=2, loc="center right", fontsize=7)

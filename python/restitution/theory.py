@@ -188,11 +188,9 @@ def beta(theta_deg: ArrayLike, mu: ArrayLike, e_n: ArrayLike, omega_in: ArrayLik
     >>> round(float(beta(5.0, mu=0.1, e_n=1.0)), 4)   # sliding: -1 + 3 * 0.2 tan 5
     -0.9475
     """
-    k = _kappa(kappa)
     w = omega_out(theta_deg, mu, e_n, omega_in, r=r, v=v, kappa=kappa)
     vx = vx_out(theta_deg, mu, e_n, omega_in, r=r, v=v, kappa=kappa)
     _, _, u = _components(np.asarray(theta_deg, dtype=float), omega_in, r, v)
-    del k
     u_out = vx + r * w
     with np.errstate(divide="ignore", invalid="ignore"):
         b = np.where(u != 0.0, -u_out / np.where(u != 0.0, u, 1.0), np.nan)

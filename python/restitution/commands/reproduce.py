@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Callable
 
@@ -39,7 +39,6 @@ class Grids:
     gamma_factors: tuple[float, float] = (0.5, 2.0)
     gamma_ts: tuple[float, ...] = (0.25, 0.5, 1.0)
     spins_deg: tuple[float, ...] = SPINS_DEG
-    extra: dict[str, Any] = field(default_factory=dict)
 
 
 def grids(quick: bool) -> Grids:
