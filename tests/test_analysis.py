@@ -148,3 +148,16 @@ def test_micro_slip_zero_for_rigid_body_and_falls_with_gamma_t():
     # MODEL.md: stronger tangential damping damps the oscillation about 2/3 (-7/+5 %, +-1.3 %, +-0.3 %).
     assert amp[0] > amp[1] > amp[2] > 0
     assert 0.002 < amp[1] < 0.03  # the study: about 2 %
+
+
+def test_sphere_inertia_follows_the_sphere_theory():
+    """inertia="sphere" (I = 2/5 m r^2): rolling e_T -> 5/7 and tan theta_c = 2 / (7 mu (1 + e_N))."""
+    scene = rs.Scene(inertia="sphere")
+    df = rs.sweep(scene, theta_deg=np.arange(4.0, 89.5, 0.5), mu=[0.3, 1.0])
+    crit = analysis.critical_angles(df, kappa="sphere")
+    rel = ((crit["theta_c"] - crit["theta_c_theory"]) / crit["theta_c_theory"]).to_numpy()
+    assert np.all((rel > 0.0) & (rel < 0.02)), rel
+    disc = theory.theta_c(crit["mu"].to_numpy(), crit["e_n_at_theta_c"].to_numpy(), kappa="disc")
+    assert np.all(np.abs(crit["theta_c"].to_numpy() - disc) > 1.0)  # the disc's theory would not do
+    ms = analysis.micro_slip(df, kappa="sphere")
+    assert np.all(np.abs(ms["e_t_mean"].to_numpy() / (5 / 7) - 1) < 0.005)
