@@ -68,7 +68,7 @@ impl<'a> Contact<'a> {
     #[inline]
     pub fn evaluate(&mut self, q: &Dof, v: &Dof, dt: f64) -> Forces {
         let m = self.model;
-        let Some(o) = m.scene.shape.overlap(q[1], q[2]) else {
+        let Some(o) = m.scene.shape.overlap_with(m.scene.overlap, q[1], q[2]) else {
             self.spring.reset();
             return Forces::default();
         };

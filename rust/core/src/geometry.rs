@@ -3,6 +3,9 @@
 //! "Model only what a scene requires": the exact disc uses the closed-form circular segment,
 //! polygons are clipped against the half-plane y <= 0 (one Sutherland-Hodgman pass, no
 //! allocation). Both return the same [`Overlap`] summary, which is all the contact law needs.
+//! The general convex-convex intersection (finite plates, any convex obstacle) lives in
+//! [`crate::obstacle`]; [`OverlapMethod::Parry`] routes the flat plate through it so that the
+//! two paths can be compared on the same scene.
 
 use crate::error::{ensure_param, positive, Result};
 use nalgebra::Vector2;
@@ -53,6 +56,57 @@ pub struct Overlap {
     /// First moment of the overlap about y = 0: integral of (-y) dA (m^3). The elastic
     /// potential of the area law is (E / L) times this.
     pub first_moment: f64,
+}
+
+/// Which algorithm computes a particle's overlap with the flat plate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum OverlapMethod {
+    /// What the scene requires: the closed-form segment for a disc, the half-plane clip for a
+    /// polygon.
+    #[default]
+    Auto,
+    /// Half-plane clip (for a disc this is its closed-form segment: the same cut, done exactly).
+    HalfPlane,
+    /// The general convex-convex intersection through parry, with the plate as a polygon
+    /// (polygons only: a disc would need a polygonal approximation, use a fine regular n-gon).
+    Parry,
+}
+
+impl OverlapMethod {
+    /// Public name, as in the Python API.
+    pub fn name(self) -> &'static str {
+        match self {
+            OverlapMethod::Auto => "auto",
+            OverlapMethod::HalfPlane => "halfplane",
+            OverlapMethod::Parry => "parry",
+        }
+    }
+
+    /// Parses a public name ("auto", "halfplane", "parry").
+    pub fn from_name(name: &str) -> Result<Self> {
+        match name {
+            "auto" => Ok(OverlapMethod::Auto),
+            "halfplane" => Ok(OverlapMethod::HalfPlane),
+            "parry" => Ok(OverlapMethod::Parry),
+            other => Err(crate::error::Error::invalid(
+                "overlap",
+                format!("{other:?}"),
+                "one of \"auto\", \"halfplane\", \"parry\"",
+            )),
+        }
+    }
+
+    /// Refuses a method the shape cannot use (parry on an exact disc).
+    pub fn check_shape(self, shape: &Shape) -> Result<()> {
+        ensure_param!(
+            !(self == OverlapMethod::Parry && matches!(shape, Shape::Disc { .. })),
+            "overlap",
+            "\"parry\"",
+            "\"auto\" or \"halfplane\" for a Disc (the parry path intersects polygons; \
+             use a RegularPolygon with large n to compare)"
+        );
+        Ok(())
+    }
 }
 
 impl Shape {
@@ -121,6 +175,16 @@ impl Shape {
         }
     }
 
+    /// Overlap with the plate computed by `method`. A disc always uses its closed form
+    /// ([`OverlapMethod::check_shape`] refuses parry for it before an impact starts).
+    #[inline]
+    pub fn overlap_with(&self, method: OverlapMethod, y: f64, phi: f64) -> Option<Overlap> {
+        match (self, method) {
+            (Shape::Polygon(p), OverlapMethod::Parry) => crate::obstacle::plate_overlap(p, y, phi),
+            _ => self.overlap(y, phi),
+        }
+    }
+
     /// Body-frame vertices (empty for a disc).
     pub fn vertices(&self) -> &[Vector2<f64>] {
         match self {
@@ -167,12 +231,12 @@ const CENTROID_SERIES: [f64; 10] = [
     -6.0 / 5.0,
     12.0 / 175.0,
     104.0 / 2625.0,
-    0.02465009276437848,   // 8304/63165 (= 16/3 * 1557/336875)
-    0.016190803482232053,  // 16/3 * 66474/21896875
-    0.011099082649776527,  // 16/3 * 4784756/2299171875
-    0.00788157956681174,   // 16/3 * 96268376/65143203125
-    0.005766413852209299,  // 16/3 * 515217398032/476522530859375
-    0.004328884375497594,  // 16/3 * 2486423898976/3063359126953125
+    0.02465009276437848,  // 8304/63165 (= 16/3 * 1557/336875)
+    0.016190803482232053, // 16/3 * 66474/21896875
+    0.011099082649776527, // 16/3 * 4784756/2299171875
+    0.00788157956681174,  // 16/3 * 96268376/65143203125
+    0.005766413852209299, // 16/3 * 515217398032/476522530859375
+    0.004328884375497594, // 16/3 * 2486423898976/3063359126953125
 ];
 
 /// Estrin evaluation (short dependency chains: this sits on the integrator's critical path).
@@ -277,63 +341,9 @@ impl Polygon {
     /// Convex polygon from counter-clockwise vertices; rejects non-finite, duplicated,
     /// clockwise, degenerate (collinear) and non-convex input.
     pub fn convex(vertices: &[[f64; 2]]) -> Result<Self> {
-        let n = vertices.len();
-        ensure_param!(
-            n >= 3,
-            "vertices",
-            format!("{n} vertices"),
-            "at least 3 vertices"
-        );
-        for (k, v) in vertices.iter().enumerate() {
-            ensure_param!(
-                v[0].is_finite() && v[1].is_finite(),
-                "vertices",
-                format!("vertex {k} = {v:?}"),
-                "finite coordinates"
-            );
-        }
-        let pts: Vec<Vector2<f64>> = vertices.iter().map(|v| Vector2::new(v[0], v[1])).collect();
-        let scale = pts
-            .iter()
-            .map(|p| p.norm())
-            .fold(0.0, f64::max)
-            .max(f64::MIN_POSITIVE);
-        for i in 0..n {
-            for j in (i + 1)..n {
-                ensure_param!(
-                    (pts[i] - pts[j]).norm() > 1e-12 * scale,
-                    "vertices",
-                    format!("vertices {i} and {j} coincide"),
-                    "distinct vertices"
-                );
-            }
-        }
+        let pts = validate_convex("vertices", vertices)?;
+        let n = pts.len();
         let signed_area: f64 = (0..n).map(|i| cross(pts[i], pts[(i + 1) % n])).sum::<f64>() * 0.5;
-        ensure_param!(
-            signed_area > 0.0,
-            "vertices",
-            format!("signed area {signed_area:e}"),
-            "counter-clockwise order (positive signed area)"
-        );
-        let mut turning = 0.0;
-        for i in 0..n {
-            let e0 = pts[(i + 1) % n] - pts[i];
-            let e1 = pts[(i + 2) % n] - pts[(i + 1) % n];
-            let c = cross(e0, e1);
-            ensure_param!(
-                c > 1e-12 * e0.norm() * e1.norm(),
-                "vertices",
-                format!("turn at vertex {}", (i + 1) % n),
-                "a strictly convex polygon (every turn to the left, no collinear vertices)"
-            );
-            turning += c.atan2(e0.dot(&e1));
-        }
-        ensure_param!(
-            (turning - 2.0 * PI).abs() < 1e-6,
-            "vertices",
-            format!("total turning {turning:.6} rad"),
-            "a simple convex polygon (total turning 2 pi)"
-        );
         // Shift to the centroid.
         let mut c = Vector2::zeros();
         for i in 0..n {
@@ -373,6 +383,16 @@ impl Polygon {
         &self.vertices
     }
 
+    /// Largest vertex distance from the centroid (m).
+    pub fn circumradius(&self) -> f64 {
+        self.circumradius
+    }
+
+    /// Area (m^2).
+    pub fn area(&self) -> f64 {
+        self.area
+    }
+
     /// Clips the polygon, placed with its centroid at (0, y) and rotated by `phi`, to y <= 0.
     ///
     /// One Sutherland-Hodgman pass that accumulates the shoelace sums on the fly, relative to
@@ -393,8 +413,7 @@ impl Polygon {
             }
             let (p_in, q_in) = (p.1 <= 0.0, q.1 <= 0.0);
             if p_in != q_in {
-                let t = p.1 / (p.1 - q.1);
-                acc.push((p.0 + t * (q.0 - p.0), 0.0));
+                acc.push((crossing_x(p, q), 0.0));
             }
             if q_in {
                 acc.push(q);
@@ -424,6 +443,76 @@ impl Polygon {
             first_moment: -area * cy,
         })
     }
+}
+
+/// x where the segment p-q crosses y = 0 (p and q on opposite sides), interpolated from the
+/// endpoint nearer the plate so that the short side of a sliver keeps its relative precision.
+#[inline]
+pub(crate) fn crossing_x(p: (f64, f64), q: (f64, f64)) -> f64 {
+    if p.1.abs() <= q.1.abs() {
+        p.0 + p.1 / (p.1 - q.1) * (q.0 - p.0)
+    } else {
+        q.0 + q.1 / (q.1 - p.1) * (p.0 - q.0)
+    }
+}
+
+/// Checks that `vertices` form a strictly convex polygon in counter-clockwise order: at least
+/// 3 finite, distinct vertices, positive signed area, every turn to the left (no collinear
+/// vertices) and total turning 2 pi (no star). Errors name the parameter `name`.
+pub(crate) fn validate_convex(name: &str, vertices: &[[f64; 2]]) -> Result<Vec<Vector2<f64>>> {
+    let n = vertices.len();
+    ensure_param!(n >= 3, name, format!("{n} vertices"), "at least 3 vertices");
+    for (k, v) in vertices.iter().enumerate() {
+        ensure_param!(
+            v[0].is_finite() && v[1].is_finite(),
+            name,
+            format!("vertex {k} = {v:?}"),
+            "finite coordinates"
+        );
+    }
+    let pts: Vec<Vector2<f64>> = vertices.iter().map(|v| Vector2::new(v[0], v[1])).collect();
+    let scale = pts
+        .iter()
+        .map(|p| p.norm())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    for i in 0..n {
+        for j in (i + 1)..n {
+            ensure_param!(
+                (pts[i] - pts[j]).norm() > 1e-12 * scale,
+                name,
+                format!("vertices {i} and {j} coincide"),
+                "distinct vertices"
+            );
+        }
+    }
+    let signed_area: f64 = (0..n).map(|i| cross(pts[i], pts[(i + 1) % n])).sum::<f64>() * 0.5;
+    ensure_param!(
+        signed_area > 0.0,
+        name,
+        format!("signed area {signed_area:e}"),
+        "counter-clockwise order (positive signed area)"
+    );
+    let mut turning = 0.0;
+    for i in 0..n {
+        let e0 = pts[(i + 1) % n] - pts[i];
+        let e1 = pts[(i + 2) % n] - pts[(i + 1) % n];
+        let c = cross(e0, e1);
+        ensure_param!(
+            c > 1e-12 * e0.norm() * e1.norm(),
+            name,
+            format!("turn at vertex {}", (i + 1) % n),
+            "a strictly convex polygon (every turn to the left, no collinear vertices)"
+        );
+        turning += c.atan2(e0.dot(&e1));
+    }
+    ensure_param!(
+        (turning - 2.0 * PI).abs() < 1e-6,
+        name,
+        format!("total turning {turning:.6} rad"),
+        "a simple convex polygon (total turning 2 pi)"
+    );
+    Ok(pts)
 }
 
 /// Shoelace sums over a stream of polygon vertices, relative to the first one.
@@ -543,10 +632,26 @@ mod tests {
     /// (y, area, centroid distance below the centre) for r = 0.01, from 40-digit mpmath:
     /// A = r^2 (a - sin a cos a), d = 2 (r sin a)^3 / (3 A), a = acos(y / r), y the f64 value.
     const DISC_REFERENCE: [(f64, f64, f64); 15] = [
-        (0.00999999999999, 1.8858106567928402413e-22, 0.0099999999999939997997),
-        (0.00999999999, 5.9628486791574033345e-18, 0.0099999999939999997119),
-        (0.00999999, 1.88561780030459155e-13, 0.0099999940000001716724),
-        (0.009999, 1.8855897986431648506e-10, 0.0099994000017143348478),
+        (
+            0.00999999999999,
+            1.8858106567928402413e-22,
+            0.0099999999999939997997,
+        ),
+        (
+            0.00999999999,
+            5.9628486791574033345e-18,
+            0.0099999999939999997119,
+        ),
+        (
+            0.00999999,
+            1.88561780030459155e-13,
+            0.0099999940000001716724,
+        ),
+        (
+            0.009999,
+            1.8855897986431648506e-10,
+            0.0099994000017143348478,
+        ),
         (0.00999, 5.9619534329329721454e-9, 0.0099940001714781111021),
         (0.00995, 6.6616644323508318328e-8, 0.0099700042919144070754),
         (0.0099, 1.8827871257349458845e-7, 0.0099400171925355237348),

@@ -217,9 +217,10 @@ fn integrate<S: Stepper>(
     model: &Model,
     init: &Initial,
     mut stepper: S,
-    max_steps: u64,
+    mut max_steps: u64,
     mut trace: Option<&mut Trace>,
 ) -> Record {
+    let contact_budget = max_steps;
     let shape = &model.scene.shape;
     let dt = model.dt;
     let inv_mass = [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia];
@@ -268,6 +269,14 @@ fn integrate<S: Stepper>(
             let frac = prev_depth / (prev_depth - depth);
             rec.contact_time += t - dt + frac * dt - contact_start;
             in_contact = false;
+            // The timeout budgets contact, not the free flight a polygon may need before its
+            // circumscribed circle clears: uniform motion, so this many steps suffice unless it
+            // hits again (capped so that a near-zero rebound still ends, as a timeout).
+            if v[1] > 0.0 {
+                let flight = ((model.r - q[1]).max(0.0) / (v[1] * dt)).ceil();
+                let cap = 20.0 * contact_budget as f64;
+                max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
+            }
         } else if !in_contact && depth > 0.0 {
             let frac = prev_depth / (prev_depth - depth);
             contact_start = t - dt + frac * dt;
@@ -279,8 +288,10 @@ fn integrate<S: Stepper>(
         }
         prev_depth = depth;
         // Done once no part of the particle can reach the plate: its circumscribed circle is
-        // clear and moving away.
-        if !in_contact && q[1] >= model.r && v[1] > 0.0 {
+        // clear and moving away, or every point of it moves away (v_y > r |omega|: in free
+        // flight the gap then only grows; without this a face-first polygon at a glancing
+        // angle would time out while drifting up to clear r).
+        if !in_contact && v[1] > 0.0 && (q[1] >= model.r || v[1] > model.r * v[2].abs()) {
             break;
         }
     }

@@ -24,13 +24,15 @@ pub mod error;
 pub mod geometry;
 pub mod impact;
 pub mod integrate;
+pub mod obstacle;
 pub mod reference;
 pub mod scene;
 pub mod sweep;
 pub mod tangential;
 
 pub use error::{Error, Result};
-pub use geometry::{Overlap, Polygon, Shape};
+pub use geometry::{Overlap, OverlapMethod, Polygon, Shape};
+pub use obstacle::{ConvexObstacle, Patch};
 pub use impact::{estimate_max_depth, simulate, simulate_with_trace, Record, Trace};
 pub use reference::{simulate_reference, simulate_reference_with_trace, ReferenceOptions};
 pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};

@@ -2,7 +2,7 @@
 //! derived constants (mass, inertia, time step, tangential spring) the contact law uses.
 
 use crate::error::{ensure_param, finite, non_negative, positive, Result};
-use crate::geometry::Shape;
+use crate::geometry::{OverlapMethod, Shape};
 
 /// The normal contact law.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -111,6 +111,8 @@ pub struct Scene {
     pub integrator: Integrator,
     /// dt = dt_factor * t_ref (default 0.01).
     pub dt_factor: f64,
+    /// How the overlap with the plate is computed (default: what the shape requires).
+    pub overlap: OverlapMethod,
 }
 
 impl Default for Scene {
@@ -127,6 +129,7 @@ impl Default for Scene {
             inertia: InertiaModel::Shape,
             integrator: Integrator::Gear5,
             dt_factor: 0.01,
+            overlap: OverlapMethod::Auto,
         }
     }
 }
@@ -222,6 +225,7 @@ impl Model {
         );
         let r = scene.shape.circumradius();
         positive("r", r)?;
+        scene.overlap.check_shape(&scene.shape)?;
         let mass = scene.rho * scene.shape.area();
         let inertia = match scene.inertia {
             InertiaModel::Shape => scene.rho * scene.shape.polar_moment(),

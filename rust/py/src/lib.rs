@@ -146,6 +146,7 @@ fn build_cases(
                     inertia,
                     integrator: parse_integrator(integ[i])?,
                     dt_factor: dtf,
+                    overlap: core::OverlapMethod::Auto,
                 };
                 Ok(core::Case {
                     scene,
