@@ -13,6 +13,11 @@ def _number(name: str, value: Any) -> float:
     return float(value)
 
 
+def check_real(name: str, value: Any) -> float:
+    """A real number (bool excluded) as float; range checks are the caller's."""
+    return _number(name, value)
+
+
 def check_finite(name: str, value: Any) -> float:
     x = _number(name, value)
     if not math.isfinite(x):

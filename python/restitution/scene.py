@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ._validation import check_choice, check_non_negative, check_positive
+from ._validation import check_choice, check_non_negative, check_positive, check_real
 from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape
 
 INTEGRATORS = ("gear5", "verlet", "reference")
@@ -76,8 +77,8 @@ class Scene:
         check_choice("normal_law", self.normal_law, NORMAL_LAWS)
         check_choice("inertia", self.inertia, INERTIAS)
         bound = MAX_DT_FACTOR[self.integrator]
-        dtf = check_positive("dt_factor", self.dt_factor)
-        if dtf > bound:
+        dtf = check_real("dt_factor", self.dt_factor)
+        if not (math.isfinite(dtf) and 0.0 < dtf <= bound):  # one message, with the bound, for NaN too
             raise ValueError(
                 f"require `dt_factor` in (0, {bound}] for the {self.integrator} integrator "
                 f"(its stability bound; found {dtf})"

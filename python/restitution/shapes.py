@@ -112,13 +112,15 @@ Shape = Disc | RegularPolygon | ConvexPolygon
 
 
 def _centroid(v: np.ndarray) -> np.ndarray:
-    x, y = v[:, 0], v[:, 1]
+    # Shoelace sums about the vertex mean: about a far-away origin their terms cancel badly.
+    o = v.mean(axis=0)
+    x, y = v[:, 0] - o[0], v[:, 1] - o[1]
     xn, yn = np.roll(x, -1), np.roll(y, -1)
     w = x * yn - xn * y
     a = w.sum() / 2.0
     if a == 0.0:
-        return v.mean(axis=0)
-    return np.array([((x + xn) * w).sum(), ((y + yn) * w).sum()]) / (6.0 * a)
+        return o
+    return o + np.array([((x + xn) * w).sum(), ((y + yn) * w).sum()]) / (6.0 * a)
 
 
 def _check_convex(v: np.ndarray) -> None:

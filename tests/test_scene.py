@@ -1,0 +1,386 @@
+"""Bad input is refused with an exception that names the parameter and its allowed range.
+
+Every check here goes through the public API (Scene, shapes, simulate, sweep) and, at the end,
+through the compiled engine directly: whatever slips past Python must come back as ValueError
+or TypeError, never as a pyo3 PanicException (a BaseException that ``pytest.raises(ValueError)``
+would not catch, so a panic fails these tests).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+from collections.abc import Iterator
+
+import numpy as np
+import polars as pl
+import pytest
+
+import restitution as rs
+from restitution import _core
+from restitution._columns import build_columns
+
+NAN, INF = math.nan, math.inf
+
+#: Scene fields and the allowed range their messages must state.
+POSITIVE = ("rho", "E", "v", "kn", "kt")
+NON_NEGATIVE = ("gamma", "gamma_t", "mu", "cn")
+
+
+@contextlib.contextmanager
+def raises_naming(exc: type[Exception], name: str, *fragments: str) -> Iterator[None]:
+    """Expects ``exc`` (exactly that family) whose message holds `name` in backticks and every fragment."""
+    with pytest.raises(exc) as info:
+        yield
+    message = str(info.value)
+    for part in (f"`{name}`", *fragments):
+        assert part in message, f"{part!r} missing from the message {message!r}"
+
+
+# --- Scene fields -----------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", POSITIVE)
+@pytest.mark.parametrize("value", [NAN, INF, -INF, -1.0, 0.0, np.float64(NAN)])
+def test_positive_fields_refuse_bad_values(name: str, value: float) -> None:
+    with raises_naming(ValueError, name, "> 0"):
+        rs.Scene(**{name: value})
+
+
+@pytest.mark.parametrize("name", NON_NEGATIVE)
+@pytest.mark.parametrize("value", [NAN, INF, -INF, -1e-12, -1.0])
+def test_non_negative_fields_refuse_bad_values(name: str, value: float) -> None:
+    with raises_naming(ValueError, name, ">= 0"):
+        rs.Scene(**{name: value})
+
+
+@pytest.mark.parametrize("name", NON_NEGATIVE)
+def test_zero_is_allowed_where_documented(name: str) -> None:
+    assert getattr(rs.Scene(**{name: 0.0}), name) == 0.0
+
+
+@pytest.mark.parametrize("name", POSITIVE + NON_NEGATIVE + ("dt_factor",))
+@pytest.mark.parametrize("value", ["1", True, [1.0], 1 + 0j])
+def test_fields_refuse_wrong_types(name: str, value: object) -> None:
+    # bool is an int in Python, but `mu=True` is a mistake, never a coefficient.
+    with raises_naming(TypeError, name):
+        rs.Scene(**{name: value})
+
+
+@pytest.mark.parametrize("name", ("rho", "E", "v", "gamma", "gamma_t", "mu", "dt_factor"))
+def test_required_fields_refuse_none(name: str) -> None:
+    with raises_naming(TypeError, name):
+        rs.Scene(**{name: None})
+
+
+@pytest.mark.parametrize("integrator", ["gear5", "verlet", "reference"])
+@pytest.mark.parametrize("factor", [NAN, INF, -1.0, 0.0, 1.0001, 2.0, 100.0])
+def test_dt_factor_names_the_integrators_bound(integrator: str, factor: float) -> None:
+    bound = rs.MAX_DT_FACTOR[integrator]
+    if 0.0 < factor <= bound:
+        pytest.skip("inside the bound for this integrator")
+    bad = bound * factor if factor > 1.0 else factor  # above the bound, or not positive/finite
+    with raises_naming(ValueError, "dt_factor", f"(0, {bound}]", integrator):
+        rs.Scene(integrator=integrator, dt_factor=bad)
+
+
+@pytest.mark.parametrize("integrator", ["gear5", "verlet", "reference"])
+def test_dt_factor_at_the_bound_is_accepted(integrator: str) -> None:
+    bound = rs.MAX_DT_FACTOR[integrator]
+    assert rs.Scene(integrator=integrator, dt_factor=bound).dt_factor == bound
+
+
+@pytest.mark.parametrize(("name", "value"), [("integrator", "rk4"), ("integrator", "Gear5"),
+                                             ("normal_law", "hertz"), ("inertia", "cube")])
+def test_choices_list_the_allowed_names(name: str, value: str) -> None:
+    with raises_naming(ValueError, name, f"found {value!r}"):
+        rs.Scene(**{name: value})
+
+
+def test_sphere_inertia_is_for_discs_only() -> None:
+    assert rs.Scene(inertia="sphere").inertia == "sphere"
+    with raises_naming(ValueError, "inertia", "sphere"):
+        rs.Scene(inertia="sphere", shape=rs.RegularPolygon(r=0.01, n=6))
+
+
+def test_shape_must_be_a_shape() -> None:
+    with raises_naming(TypeError, "shape"):
+        rs.Scene(shape=0.01)  # type: ignore[arg-type]
+
+
+def test_scene_is_keyword_only_and_frozen() -> None:
+    with pytest.raises(TypeError):
+        rs.Scene(rs.Disc(0.01))  # type: ignore[misc]
+    scene = rs.Scene()
+    with pytest.raises(AttributeError):
+        scene.mu = 1.0  # type: ignore[misc]
+
+
+def test_replace_validates_and_leaves_the_original() -> None:
+    scene = rs.Scene(mu=0.2)
+    assert scene.replace(mu=1.0).mu == 1.0 and scene.mu == 0.2
+    with raises_naming(ValueError, "mu", ">= 0"):
+        scene.replace(mu=-0.1)
+
+
+def test_defaults_are_the_paper_preset_of_model_md() -> None:
+    s = rs.Scene()
+    assert s.shape == rs.Disc(r=0.01)
+    assert (s.rho, s.E, s.gamma, s.gamma_t, s.mu, s.v) == (2500.0, 1e7, 0.33, 0.5, 0.5, 0.0357)
+    assert (s.integrator, s.dt_factor, s.normal_law, s.inertia) == ("gear5", 0.01, "area", "shape")
+    p = rs.Scene.paper()
+    assert p.shape == rs.RegularPolygon(r=0.01, n=120, phi0_deg=0.0)
+    assert p.replace(shape=rs.Disc(r=0.01)) == s
+    assert rs.Scene.paper(shape=rs.Disc(r=0.01), mu=1.0) == s.replace(mu=1.0)
+
+
+# --- Shapes -----------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("r", [0.0, -0.01, NAN, INF])
+@pytest.mark.parametrize("make", [rs.Disc, lambda r: rs.RegularPolygon(r=r, n=6)])
+def test_shapes_refuse_bad_radius(make, r: float) -> None:
+    with raises_naming(ValueError, "r", "> 0"):
+        make(r)
+
+
+@pytest.mark.parametrize("n", [2, 1, 0, -3])
+def test_regular_polygon_needs_three_corners(n: int) -> None:
+    with raises_naming(ValueError, "n", ">= 3"):
+        rs.RegularPolygon(r=0.01, n=n)
+
+
+@pytest.mark.parametrize("n", [6.0, 3.5, "6", True, None])
+def test_regular_polygon_needs_an_integer_n(n: object) -> None:
+    with raises_naming(TypeError, "n", "integer"):
+        rs.RegularPolygon(r=0.01, n=n)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("phi", [NAN, INF])
+def test_orientation_must_be_finite(phi: float) -> None:
+    with raises_naming(ValueError, "phi0_deg", "finite"):
+        rs.RegularPolygon(r=0.01, n=6, phi0_deg=phi)
+    with raises_naming(ValueError, "phi0_deg", "finite"):
+        rs.ConvexPolygon([(0, 0), (1, 0), (0, 1)], phi0_deg=phi)
+
+
+SQUARE = [(0.0, 0.0), (0.02, 0.0), (0.02, 0.02), (0.0, 0.02)]
+
+
+@pytest.mark.parametrize(("vertices", "fragment"), [
+    (SQUARE[::-1], "counter-clockwise"),                                            # clockwise
+    ([(0, 0), (0.02, 0), (0.01, 0.005), (0.02, 0.02), (0, 0.02)], "convex"),        # a dent
+    ([(0, 0), (0.02, 0), (0.02, 0), (0.02, 0.02), (0, 0.02)], "distinct"),          # repeated vertex
+    ([(0, 0), (0.01, 0), (0.02, 0), (0.02, 0.02), (0, 0.02)], "collinear"),         # straight angle
+    ([(0, 0), (0.01, 0), (0.02, 0)], "counter-clockwise"),                          # zero area
+    ([(0, 0), (0.02, NAN), (0, 0.02)], "finite"),
+    ([(0, 0), (INF, 0), (0, 0.02)], "finite"),
+    # a pentagram: every turn is left, but it winds twice
+    ([(math.cos(a), math.sin(a)) for a in np.arange(5) * 4 * math.pi / 5], "simple"),
+])
+def test_convex_polygon_refuses_bad_vertices(vertices, fragment: str) -> None:
+    with raises_naming(ValueError, "vertices", fragment):
+        rs.ConvexPolygon(vertices)
+
+
+@pytest.mark.parametrize("vertices", [
+    np.zeros((3, 3)), np.zeros(6), np.zeros((2, 2)), np.zeros((0, 2)), np.zeros((3, 2, 1)),
+])
+def test_convex_polygon_refuses_wrong_array_shapes(vertices: np.ndarray) -> None:
+    with raises_naming(ValueError, "vertices", "(k, 2)"):
+        rs.ConvexPolygon(vertices)
+
+
+@pytest.mark.parametrize("vertices", ["abc", [(0, 0), (1, 0), (1,)], [(0, 0), ("a", 0), (0, 1)]])
+def test_convex_polygon_refuses_non_numbers(vertices) -> None:
+    with raises_naming(TypeError, "vertices"):
+        rs.ConvexPolygon(vertices)
+
+
+def test_convex_polygon_is_centred_and_sized_by_its_farthest_vertex() -> None:
+    # A right triangle: centroid at (a/3, a/3), farthest vertex at distance sqrt(5) a / 3.
+    a = 0.03
+    tri = rs.ConvexPolygon([(0, 0), (a, 0), (0, a)])
+    assert tri.r == pytest.approx(math.sqrt(5) * a / 3, rel=1e-14)
+    assert tri.n == 3
+    sq = rs.ConvexPolygon(np.array(SQUARE) + 5.0)  # position in the body frame does not matter
+    assert sq.r == pytest.approx(0.01 * math.sqrt(2), rel=1e-12)
+
+
+# --- simulate's own arguments -----------------------------------------------------------------
+
+@pytest.mark.parametrize("theta", [0.0, -1.0, -90.0, 90.0 + 1e-9, 91.0, 180.0, NAN, INF, -INF])
+def test_theta_outside_0_90_is_refused(disc_scene: rs.Scene, theta: float) -> None:
+    with raises_naming(ValueError, "theta_deg", "(0, 90]"):
+        rs.simulate(disc_scene, theta_deg=theta)
+
+
+@pytest.mark.parametrize("theta", ["45", None, [45.0]])
+def test_theta_of_the_wrong_type_is_refused(disc_scene: rs.Scene, theta: object) -> None:
+    with raises_naming(TypeError, "theta_deg"):
+        rs.simulate(disc_scene, theta_deg=theta)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("omega", [NAN, INF, -INF])
+def test_omega_in_must_be_finite(disc_scene: rs.Scene, omega: float) -> None:
+    with raises_naming(ValueError, "omega_in", "finite"):
+        rs.simulate(disc_scene, theta_deg=45.0, omega_in=omega)
+
+
+def test_simulate_needs_a_scene() -> None:
+    with raises_naming(TypeError, "scene"):
+        rs.simulate({"mu": 0.5}, theta_deg=45.0)  # type: ignore[arg-type]
+
+
+def test_a_scene_the_law_cannot_describe_names_v_and_E() -> None:
+    # MODEL.md: an estimated maximal depth above r / 2 is refused, naming v and E.
+    with pytest.raises(ValueError, match=r"(?s)`v`.*E"):
+        rs.simulate(rs.Scene(v=50.0), theta_deg=90.0)
+
+
+# --- sweep axes ---------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("name", ["theta_deg", "mu", "omega_in", "gamma"])
+def test_sweep_refuses_2d_axes(disc_scene: rs.Scene, name: str) -> None:
+    axes = {"theta_deg": 45.0, name: np.full((2, 2), 30.0 if name == "theta_deg" else 0.1)}
+    with raises_naming(ValueError, name, "1-D"):
+        rs.sweep(disc_scene, **axes)
+
+
+@pytest.mark.parametrize(("name", "values", "fragment"), [
+    ("theta_deg", [30.0, 0.0], "(0, 90]"),
+    ("theta_deg", [30.0, 95.0], "(0, 90]"),
+    ("theta_deg", [30.0, NAN], "finite"),
+    ("mu", [0.1, -0.5], ">= 0"),
+    ("mu", [0.1, INF], "finite"),
+    ("gamma", [-1.0], ">= 0"),
+    ("gamma_t", [NAN], "finite"),
+    ("omega_in", [0.0, NAN], "finite"),
+    ("v", [0.0357, 0.0], "> 0"),
+    ("E", [-1e7], "> 0"),
+    ("rho", [0.0], "> 0"),
+    ("r", [0.01, -0.01], "> 0"),
+    ("kt", [0.0], "> 0"),
+    ("dt_factor", [0.0], "> 0"),
+    ("dt_factor", [0.01, 1e3], "stability bound"),
+    ("n", [6, 2], ">= 3"),
+    ("integrator", ["gear5", "rk4"], "gear5"),
+    ("normal_law", ["hertz"], "area"),
+    ("theta_deg", [], "non-empty"),
+    ("mu", [], "non-empty"),
+])
+def test_sweep_names_the_axis_with_a_bad_value(disc_scene: rs.Scene, name: str, values: list, fragment: str) -> None:
+    axes = {"theta_deg": 45.0, name: values}
+    with raises_naming(ValueError, name, fragment):
+        rs.sweep(disc_scene, **axes)
+
+
+@pytest.mark.parametrize(("name", "values"), [("theta_deg", ["a"]), ("mu", [{"x": 1}]), ("n", [6.0])])
+def test_sweep_axes_of_the_wrong_type(disc_scene: rs.Scene, name: str, values: list) -> None:
+    with raises_naming(TypeError, name):
+        rs.sweep(disc_scene, **{"theta_deg": 45.0, name: values})
+
+
+def test_sweep_refuses_unknown_axes_and_lists_the_allowed(disc_scene: rs.Scene) -> None:
+    with raises_naming(ValueError, "friction", "theta_deg", "omega_in", "mu"):
+        rs.sweep(disc_scene, theta_deg=[45.0], friction=[0.1])
+    with raises_naming(ValueError, "theta_deg", "required"):
+        rs.sweep(disc_scene, mu=[0.1])
+
+
+def test_sweep_n_axis_is_refused_for_a_convex_polygon() -> None:
+    scene = rs.Scene(shape=rs.ConvexPolygon(SQUARE))
+    with raises_naming(ValueError, "n", "ConvexPolygon"):
+        rs.sweep(scene, theta_deg=45.0, n=[4, 6])
+
+
+def test_cases_frame_with_unknown_or_missing_columns(disc_scene: rs.Scene) -> None:
+    with pytest.raises(ValueError, match=r"(?s)not axes.*'friction'.*allowed"):
+        rs.sweep(disc_scene, cases=pl.DataFrame({"theta_deg": [30.0], "friction": [0.3]}))
+    with raises_naming(ValueError, "theta_deg"):
+        rs.sweep(disc_scene, cases=pl.DataFrame({"mu": [0.3]}))
+    with raises_naming(ValueError, "theta_deg", "finite"):
+        rs.sweep(disc_scene, cases=pl.DataFrame({"theta_deg": [30.0, None]}))
+    with raises_naming(ValueError, "mu", ">= 0"):
+        rs.sweep(disc_scene, cases=pl.DataFrame({"theta_deg": [30.0, 40.0], "mu": [0.1, -0.1]}))
+    with pytest.raises(ValueError, match="either `cases` or axes"):
+        rs.sweep(disc_scene, cases=pl.DataFrame({"theta_deg": [30.0]}), mu=[0.1])
+    with raises_naming(TypeError, "cases"):
+        rs.sweep(disc_scene, cases={"theta_deg": [30.0]})  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("threads", [0, -1, 1.5, True, "2"])
+def test_sweep_threads_must_be_a_positive_integer(disc_scene: rs.Scene, threads: object) -> None:
+    with raises_naming(ValueError, "threads", ">= 1"):
+        rs.sweep(disc_scene, theta_deg=45.0, threads=threads)  # type: ignore[arg-type]
+
+
+# --- the compiled engine, bypassing the Python checks --------------------------------------------
+
+def _columns(**override: np.ndarray) -> dict[str, np.ndarray]:
+    cols = build_columns(rs.Scene(), {"theta_deg": np.array([45.0])}, 1)
+    cols.update(override)
+    return cols
+
+
+ENGINE_BAD = [(name, value) for name in ("theta_deg", "omega_in", "v", "mu", "gamma", "gamma_t", "E", "rho",
+                                          "r", "phi0_deg", "dt_factor", "kt")
+              for value in (NAN, INF, -1.0, 0.0)
+              if not (name in ("omega_in", "phi0_deg") and value in (-1.0, 0.0))
+              and not (name in ("mu", "gamma", "gamma_t") and value == 0.0)
+              and not (name == "kt" and value != value)]  # kt NaN is the engine's "default 2 E / 7"
+
+
+@pytest.mark.parametrize(("name", "value"), ENGINE_BAD)
+def test_engine_refuses_what_python_would_have(name: str, value: float) -> None:
+    with pytest.raises(ValueError, match="require"):
+        _core.run_cases(_columns(**{name: np.array([value])}), None, "area", "shape", 1)
+
+
+@pytest.mark.parametrize(("name", "value"), [("kn", NAN), ("kn", 0.0), ("cn", -1.0), ("cn", NAN)])
+def test_engine_checks_the_linear_law_parameters(name: str, value: float) -> None:
+    with pytest.raises(ValueError, match=f"`{name}`"):
+        _core.run_cases(_columns(**{name: np.array([value])}), None, "linear", "shape", 1)
+
+
+@pytest.mark.parametrize(("override", "vertices", "law", "inertia"), [
+    ({"n": np.array([2])}, None, "area", "shape"),
+    ({"n": np.array([-7])}, None, "area", "shape"),
+    ({"integrator": np.array([9])}, None, "area", "shape"),
+    ({"n": np.array([6])}, None, "area", "sphere"),
+    ({}, None, "hertz", "shape"),
+    ({}, None, "area", "cube"),
+    ({"mu": np.array([0.1, 0.2])}, None, "area", "shape"),          # length mismatch
+    ({"mu": np.array([[0.1]])}, None, "area", "shape"),             # 2-D column
+    ({"n": np.array([0.0])}, None, "area", "shape"),                # wrong dtype
+    ({"theta_deg": np.array([45])}, None, "area", "shape"),         # wrong dtype
+    ({}, np.zeros((3, 3)), "area", "shape"),
+    ({}, np.zeros((3, 2)), "area", "shape"),                        # coinciding vertices
+    ({}, np.full((3, 2), NAN), "area", "shape"),
+    ({}, np.zeros((1, 2)), "area", "shape"),
+    ({}, np.zeros((0, 2)), "area", "shape"),
+    ({}, np.array([[0.0, 1.0], [1.0, 0.0], [0.0, -1.0]]), "area", "shape"),  # clockwise
+])
+def test_engine_never_panics_on_malformed_input(override, vertices, law: str, inertia: str) -> None:
+    with pytest.raises((ValueError, TypeError)):
+        _core.run_cases(_columns(**override), vertices, law, inertia, 1)
+
+
+def test_engine_reports_a_missing_column() -> None:
+    cols = _columns()
+    del cols["mu"]
+    with pytest.raises(KeyError, match="mu"):
+        _core.run_cases(cols, None, "area", "shape", 1)
+
+
+def test_trace_takes_exactly_one_case() -> None:
+    two = {k: np.repeat(v, 2) for k, v in _columns().items()}
+    with pytest.raises(ValueError, match="exactly one"):
+        _core.trace_case(two, None, "area", "shape")
+    with pytest.raises(ValueError, match="require"):
+        _core.trace_case(_columns(theta_deg=np.array([NAN])), None, "area", "shape")
+
+
+def test_engine_max_dt_factor_matches_the_python_bounds() -> None:
+    for name, bound in rs.MAX_DT_FACTOR.items():
+        assert _core.max_dt_factor(name) == bound
+    with raises_naming(ValueError, "integrator"):
+        _core.max_dt_factor("rk4")
