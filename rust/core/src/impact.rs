@@ -269,14 +269,15 @@ fn integrate<S: Stepper>(
             let frac = prev_depth / (prev_depth - depth);
             rec.contact_time += t - dt + frac * dt - contact_start;
             in_contact = false;
-            // The timeout budgets contact, not the free flight a polygon may need before its
-            // circumscribed circle clears: uniform motion, so this many steps suffice unless it
-            // hits again (capped so that a near-zero rebound still ends, as a timeout).
-            if v[1] > 0.0 {
-                let flight = ((model.r - q[1]).max(0.0) / (v[1] * dt)).ceil();
-                let cap = 20.0 * contact_budget as f64;
-                max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
-            }
+            // The timeout budgets contact, not the free flight of a spinning polygon between
+            // contacts: in uniform motion its circumscribed circle clears within
+            // (r - y) / v_y when rising, and when sinking its centre (which stays above the
+            // plate) meets it within y / |v_y|. Capped, so that a near-zero v_y still ends,
+            // as a timeout.
+            let gap = if v[1] > 0.0 { model.r - q[1] } else { q[1] };
+            let flight = (gap.max(0.0) / (v[1].abs() * dt)).ceil();
+            let cap = 20.0 * contact_budget as f64;
+            max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
         } else if !in_contact && depth > 0.0 {
             let frac = prev_depth / (prev_depth - depth);
             contact_start = t - dt + frac * dt;
