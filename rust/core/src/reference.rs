@@ -31,7 +31,7 @@ use crate::contact::Forces;
 use crate::error::Result;
 use crate::geometry::{Overlap, Shape};
 use crate::impact::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
-use crate::scene::{Initial, Model, NormalLaw, Scene};
+use crate::scene::{Initial, Integrator, Model, NormalLaw, Scene};
 use crate::tangential::StickState;
 use nalgebra::Vector2;
 use std::f64::consts::PI;
@@ -62,7 +62,7 @@ pub fn simulate_reference(
     init: &Initial,
     opts: &ReferenceOptions,
 ) -> Result<Record> {
-    let model = Model::new(scene)?;
+    let model = reference_model(scene)?;
     model.check_initial(init)?;
     let depth_est = estimate_max_depth(&model, init)?;
     Ok(integrate(&model, init, depth_est, opts, None))
@@ -74,12 +74,21 @@ pub fn simulate_reference_with_trace(
     init: &Initial,
     opts: &ReferenceOptions,
 ) -> Result<(Record, Trace)> {
-    let model = Model::new(scene)?;
+    let model = reference_model(scene)?;
     model.check_initial(init)?;
     let depth_est = estimate_max_depth(&model, init)?;
     let mut trace = Trace::default();
     let rec = integrate(&model, init, depth_est, opts, Some(&mut trace));
     Ok((rec, trace))
+}
+
+/// The scene validated as one for the reference integrator (its `dt_factor` is only its
+/// largest step, so the fixed-step integrators' stability bounds do not apply).
+fn reference_model(scene: &Scene) -> Result<Model> {
+    Model::new(&Scene {
+        integrator: Integrator::Reference,
+        ..scene.clone()
+    })
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -132,6 +141,8 @@ enum Tan {
 struct Mode {
     touch: Touch,
     clip_on: bool,
+    /// The clip held off for one step, its events ignored, where it chatters (see `integrate`).
+    clip_hold: bool,
     tan: Tan,
 }
 
@@ -283,9 +294,20 @@ impl<'a> Reference<'a> {
         let a = (first + n - 1) % n;
         let last = (first + len - 1) % n;
         let b = (last + 1) % n;
+        // Interpolated from the end nearer the plate (slivers keep their precision); an edge
+        // parallel to the plate, possible only in the continuation, takes its midpoint.
         let crossing = |p: (f64, f64), q: (f64, f64)| {
-            let t = p.1 / (p.1 - q.1);
-            p.0 + t * (q.0 - p.0)
+            let (near, far) = if p.1.abs() <= q.1.abs() {
+                (p, q)
+            } else {
+                (q, p)
+            };
+            let t = near.1 / (near.1 - far.1);
+            if t.is_finite() {
+                near.0 + t * (far.0 - near.0)
+            } else {
+                0.5 * (p.0 + q.0)
+            }
         };
         let p_first = self.corner(first, y, sc);
         let p_last = self.corner(last, y, sc);
@@ -505,11 +527,13 @@ impl<'a> Reference<'a> {
                 }
             }
         }
-        out.push(if m.clip_on {
-            Event::ClipOff
-        } else {
-            Event::ClipOn
-        });
+        if !m.clip_hold {
+            out.push(if m.clip_on {
+                Event::ClipOff
+            } else {
+                Event::ClipOn
+            });
+        }
         match m.tan {
             Tan::Stick => out.push(Event::ToSlip),
             Tan::Slip(_) => out.push(Event::ToStick),
@@ -696,7 +720,13 @@ pub(crate) fn integrate(
         fd_step: 1e-5 * t_est,
     };
     let t_end = TIMEOUT_CONTACT_TIMES * t_est;
-    let max_steps = (t_end / h_max).ceil().min(1e12) as u64 + 10_000;
+    // A guard against hangs (the time-out proper is t_end): steps may be much shorter than
+    // h_max while a turning polygon brings corner after corner to the plate, but an explicit
+    // method crawls through a damper much stiffer than the contact (a spinning triangle at
+    // gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed out within seconds.
+    let max_steps = (10.0 * t_end / h_max).ceil().min(1e12) as u64 + 300_000;
+    // Pieces shorter than this are negligible (for chattering and for slip counting).
+    let tiny = 1e-9 * t_est;
     let n_corners = verts.len();
 
     let mut s: State = [0.0; NS];
@@ -712,6 +742,7 @@ pub(crate) fn integrate(
     let mut mode = Mode {
         touch,
         clip_on: true,
+        clip_hold: false,
         tan: Tan::None,
     };
     mode.tan = ode.initial_tan(&mode, &s);
@@ -724,6 +755,9 @@ pub(crate) fn integrate(
     let mut attempts: u64 = 0;
     let mut h = h_max;
     let mut zero_pieces = 0u32;
+    // Consecutive negligible pieces ended by a stick/slip switch, and by a clip switch.
+    let (mut chatter_t, mut chatter_c) = (0u32, 0u32);
+    let mut hold_tangential = false;
     let mut timed_out = false;
 
     let (mut k1, e0) = ode.eval(&mode, &s);
@@ -736,19 +770,30 @@ pub(crate) fn integrate(
         if mode.touch == Touch::Off && s[VY] > 0.0 && (s[Y] >= r || s[VY] > r * s[OM].abs()) {
             break;
         }
-        if t >= t_end || steps >= max_steps || attempts >= 20 * max_steps {
+        if t >= t_end || attempts >= max_steps {
             timed_out = true;
             break;
         }
         h = h.min(h_max);
-        if mode.touch == Touch::Off && n_corners > 0 && s[OM] != 0.0 {
-            // In flight a polygon may hit again by turning a corner into the plate: step
-            // finely enough (a quarter of the angle between corners) not to miss it.
+        if n_corners > 0 && s[OM] != 0.0 {
+            // A turning polygon brings corners to the plate: step finely enough (a quarter of
+            // the angle between corners) that no corner touches and leaves within one step,
+            // in flight (a missed re-contact) and in contact (a stale set of submerged corners).
             h = h.min(0.25 * (2.0 * PI / n_corners as f64) / s[OM].abs());
         }
         let (step, err) = ode.dp_step(&mode, &s, &k1, h);
         attempts += 1;
         let h_min = 1e-13 * t_est;
+        if !err.is_finite() {
+            // Never accept a non-finite state: shrink hard and retry; if even the smallest
+            // step fails, stop with the last finite state and say so.
+            if h > h_min {
+                h = (0.1 * h).max(h_min);
+                continue;
+            }
+            timed_out = true;
+            break;
+        }
         if err > 1.0 && h > h_min {
             h = (h * (0.9 * err.powf(-0.2)).max(0.2)).max(h_min);
             continue;
@@ -758,6 +803,9 @@ pub(crate) fn integrate(
         let mut first: Option<(f64, Event)> = None;
         if zero_pieces < 16 {
             for ev in ode.candidates(&mode) {
+                if hold_tangential && matches!(ev, Event::ToSlip | Event::ToStick) {
+                    continue;
+                }
                 let g1 = ode.event_value(&mode, ev, &step.y1);
                 if g1 > 0.0 {
                     let th = ode.locate(&mode, ev, &step, g1);
@@ -780,12 +828,19 @@ pub(crate) fn integrate(
         if event.is_none() {
             zero_pieces = 0;
         }
+        hold_tangential = false;
+        match event {
+            Some(Event::ToSlip | Event::ToStick) if h_taken < tiny => chatter_t += 1,
+            Some(Event::ClipOn | Event::ClipOff) if h_taken < tiny => chatter_c += 1,
+            _ if h_taken >= tiny => (chatter_t, chatter_c) = (0, 0),
+            _ => {}
+        }
         if h_taken > 0.0 {
             steps += 1;
             zero_pieces = 0;
-            // Only a stick phase of positive length counts for slip events (a guess of stick
-            // at first touch that the events correct at once is no micro-slip).
-            tally.stuck |= mode.tan == Tan::Stick;
+            // Only a stick phase of some length counts for slip events (a guess of stick at
+            // first touch that the events correct at once, or chattering, is no micro-slip).
+            tally.stuck |= mode.tan == Tan::Stick && h_taken >= tiny;
             // The deepest point inside the step (where the depth stops growing).
             track_extremes(&ode, &mode, &step, h_taken / h, &mut tally);
         } else {
@@ -793,8 +848,39 @@ pub(crate) fn integrate(
         }
         t += h_taken;
         s = s_new;
+        if mode.clip_hold {
+            // The held step is done: the end state decides the clip again.
+            mode.clip_hold = false;
+            if ode.eval(&mode, &s).1.fn_raw > 0.0 {
+                mode.clip_on = true;
+                mode.tan = ode.initial_tan(&mode, &s);
+            }
+        }
         if let Some(ev) = event {
             apply(&ode, &mut mode, ev, &mut s, t, &mut tally);
+        }
+        if chatter_c >= 16 && !mode.clip_on {
+            // The clip switches on and off at once: a damper much stiffer than the contact
+            // holds F_el + F_d at zero (a sliding mode), so the force is about zero too. Take
+            // one step without it; an explicit method could not follow the damper anyway.
+            mode.clip_hold = true;
+            chatter_c = 0;
+        }
+        if chatter_t >= 16 {
+            // Stick and slip each end at once: the motion slides along |F_trial| = mu F_n
+            // (a Filippov sliding mode), whose force law is slip's. Take one step in slip.
+            if mode.tan == Tan::Stick {
+                let e = ode.eval(&mode, &s).1;
+                let sg = if e.trial != 0.0 {
+                    e.trial.signum()
+                } else {
+                    -e.v_t.signum()
+                };
+                mode.tan = Tan::Slip(sg);
+                s[XI] = -(ode.mu * e.forces.fy * sg + model.ct * e.v_t) / model.kt;
+            }
+            hold_tangential = true;
+            chatter_t = 0;
         }
         let (k, e) = ode.eval(&mode, &s);
         k1 = k;
