@@ -31,6 +31,10 @@ pub struct Polygon {
     area: f64,
     /// Polar second moment of area about the centroid, m^4 (per unit depth).
     polar_moment: f64,
+    /// Polar angles of the vertices about the centroid, unwrapped to increase from the first
+    /// (convex and counter-clockwise about an interior point: monotone). Used to find the
+    /// lowest vertex in O(log n) instead of scanning all of them every step.
+    polar: Vec<f64>,
 }
 
 /// What the contact law needs to know about the overlap of a particle with the plate.
@@ -157,10 +161,8 @@ impl Shape {
             Shape::Disc { r } => *r,
             Shape::Polygon(p) => {
                 let (s, c) = phi.sin_cos();
-                -p.vertices
-                    .iter()
-                    .map(|v| s * v.x + c * v.y)
-                    .fold(f64::INFINITY, f64::min)
+                let v = &p.vertices[p.lowest_vertex(s, c)];
+                -(s * v.x + c * v.y)
             }
         }
     }
@@ -370,11 +372,22 @@ impl Polygon {
         let c = c / (3.0 * area2);
         let polar_moment = j / 12.0 - area * c.norm_squared();
         let circumradius = vertices.iter().map(|v| v.norm()).fold(0.0, f64::max);
+        let mut polar: Vec<f64> = Vec::with_capacity(n);
+        for v in &vertices {
+            let mut a = v.y.atan2(v.x);
+            if let Some(&first) = polar.first() {
+                while a < first {
+                    a += 2.0 * PI;
+                }
+            }
+            polar.push(a);
+        }
         Polygon {
             vertices,
             circumradius,
             area,
             polar_moment,
+            polar,
         }
     }
 
@@ -393,35 +406,85 @@ impl Polygon {
         self.area
     }
 
+    /// Index of the lowest vertex at orientation (sin, cos) = (`s`, `c`): the one that
+    /// minimises s v.x + c v.y (its world height relative to the centre). A binary search on
+    /// the polar angles gives a neighbour of it, a short descent along the boundary the vertex
+    /// itself (for a convex polygon the heights along the boundary have one minimum).
+    #[inline]
+    pub fn lowest_vertex(&self, s: f64, c: f64) -> usize {
+        let n = self.vertices.len();
+        let h = |i: usize| {
+            let v = &self.vertices[i];
+            s * v.x + c * v.y
+        };
+        // The body-frame direction that points straight down in the world.
+        let first = self.polar[0];
+        let mut a = (-c).atan2(-s);
+        a = first + (a - first).rem_euclid(2.0 * PI);
+        let mut k = self.polar.partition_point(|&p| p <= a).saturating_sub(1);
+        if k >= n {
+            k = n - 1;
+        }
+        let mut hk = h(k);
+        loop {
+            let next = if k + 1 == n { 0 } else { k + 1 };
+            let hn = h(next);
+            if hn < hk {
+                (k, hk) = (next, hn);
+                continue;
+            }
+            let prev = if k == 0 { n - 1 } else { k - 1 };
+            let hp = h(prev);
+            if hp < hk {
+                (k, hk) = (prev, hp);
+                continue;
+            }
+            return k;
+        }
+    }
+
     /// Clips the polygon, placed with its centroid at (0, y) and rotated by `phi`, to y <= 0.
     ///
-    /// One Sutherland-Hodgman pass that accumulates the shoelace sums on the fly, relative to
-    /// the first emitted point so that slivers keep their precision. Vertices exactly on the
-    /// plate count as inside; crossing points are placed exactly on y = 0.
+    /// Only the vertices below the plate are visited: from the lowest vertex the boundary is
+    /// walked backwards to the entry crossing, then forwards to the exit crossing (below the
+    /// plate they form one contiguous chain of a convex polygon). The shoelace sums are
+    /// accumulated on the fly, relative to the first emitted point so that slivers keep their
+    /// precision. Vertices exactly on the plate count as inside; crossing points are placed
+    /// exactly on y = 0.
     pub fn clip_below_plate(&self, y: f64, phi: f64) -> Option<Overlap> {
         let (s, c) = phi.sin_cos();
         let world = |v: &Vector2<f64>| (c * v.x - s * v.y, y + s * v.x + c * v.y);
         let n = self.vertices.len();
-        let mut acc = ShoelaceAcc::default();
-        let (mut depth, mut x_low) = (f64::NEG_INFINITY, 0.0);
-        let mut p = world(&self.vertices[n - 1]);
-        for v in &self.vertices {
-            let q = world(v);
-            if -q.1 > depth {
-                depth = -q.1;
-                x_low = q.0;
-            }
-            let (p_in, q_in) = (p.1 <= 0.0, q.1 <= 0.0);
-            if p_in != q_in {
-                acc.push((crossing_x(p, q), 0.0));
-            }
-            if q_in {
-                acc.push(q);
-            }
-            p = q;
-        }
+        let k = self.lowest_vertex(s, c);
+        let low = world(&self.vertices[k]);
+        let (depth, x_low) = (-low.1, low.0);
         if depth <= 0.0 {
             return None;
+        }
+        // Back to the first vertex of the chain below (or on) the plate.
+        let mut first = k;
+        for _ in 1..n {
+            let prev = if first == 0 { n - 1 } else { first - 1 };
+            if world(&self.vertices[prev]).1 > 0.0 {
+                break;
+            }
+            first = prev;
+        }
+        let mut acc = ShoelaceAcc::default();
+        let mut p = world(&self.vertices[if first == 0 { n - 1 } else { first - 1 }]);
+        let mut i = first;
+        for _ in 0..n {
+            let q = world(&self.vertices[i]);
+            let q_in = q.1 <= 0.0;
+            if (p.1 <= 0.0) != q_in {
+                acc.push((crossing_x(p, q), 0.0));
+            }
+            if !q_in {
+                break;
+            }
+            acc.push(q);
+            p = q;
+            i = if i + 1 == n { 0 } else { i + 1 };
         }
         let (area, cx, cy) = acc.finish();
         let (chord, x_mid) = if acc.chord_max >= acc.chord_min {

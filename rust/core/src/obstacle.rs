@@ -153,20 +153,19 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
             obstacle,
             out,
         } = &mut *buf;
-        world.clear();
-        let (mut depth, mut x_low) = (f64::NEG_INFINITY, 0.0);
-        for v in particle.vertices() {
-            // The same expressions as the half-plane path, then an exact scaling.
-            let (wx, wy) = (c * v.x - s * v.y, y + s * v.x + c * v.y);
-            if -wy > depth {
-                depth = -wy;
-                x_low = wx;
-            }
-            world.push(V::new(wx * scale, wy * scale));
-        }
+        // The same expressions and lowest vertex as the half-plane path, then an exact
+        // scaling.
+        let place = |v: &nalgebra::Vector2<f64>| (c * v.x - s * v.y, y + s * v.x + c * v.y);
+        let (x_low, low) = place(&particle.vertices()[particle.lowest_vertex(s, c)]);
+        let depth = -low;
         if depth <= 0.0 {
             return None;
         }
+        world.clear();
+        world.extend(particle.vertices().iter().map(|v| {
+            let (wx, wy) = place(v);
+            V::new(wx * scale, wy * scale)
+        }));
         // Half-width 2 (scaled circumradius <= sqrt 2): wider than the particle, and a power of
         // two so that the top edge's orientation test is exact. The bottom lies below the
         // particle at any depth.

@@ -63,6 +63,27 @@ proptest! {
     }
 
     #[test]
+    fn lowest_vertex_search_matches_a_full_scan(
+        angles in prop::collection::vec(0.0..2.0 * PI, 3..40),
+        stretch in 0.05f64..1.0,
+        shear in -2.0f64..2.0,
+        phi in -10.0..10.0f64,
+    ) {
+        // The O(log n) search (binary search on polar angles, then descent) finds the same
+        // lowest point as scanning every vertex, also for thin, sheared polygons.
+        let shape = polygon(&angles, 0.01, stretch, shear);
+        prop_assume!(shape.is_some());
+        let shape = shape.unwrap();
+        let (s, c) = phi.sin_cos();
+        let scan = shape
+            .vertices()
+            .iter()
+            .map(|v| s * v.x + c * v.y)
+            .fold(f64::INFINITY, f64::min);
+        prop_assert_eq!(shape.touch_height(phi), -scan);
+    }
+
+    #[test]
     fn overlap_is_continuous_in_depth_and_angle(
         n in 3usize..12,
         phi in 0.0..2.0 * PI,
