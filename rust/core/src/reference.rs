@@ -941,16 +941,21 @@ fn track_extremes(ode: &Reference, m: &Mode, step: &Step, frac: f64, tally: &mut
     }
     let sample = |th: f64| {
         let e = ode.eval(m, &step.at(th)).1;
-        (e.depth, e.forces.overlap.map_or(0.0, |o| o.area))
+        [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)]
     };
-    tally.max_depth = tally.max_depth.max(peak(|th| sample(th).0, frac));
-    tally.max_area = tally.max_area.max(peak(|th| sample(th).1, frac));
+    let ends = [sample(0.0), sample(0.5 * frac), sample(frac)];
+    for (k, best) in [&mut tally.max_depth, &mut tally.max_area]
+        .into_iter()
+        .enumerate()
+    {
+        let f3 = [ends[0][k], ends[1][k], ends[2][k]];
+        *best = best.max(peak(|th| sample(th)[k], f3, frac));
+    }
 }
 
-/// Largest value of `f` on [0, frac] when it peaks inside; -inf otherwise (the ends are
-/// recorded as step ends).
-fn peak(f: impl Fn(f64) -> f64, frac: f64) -> f64 {
-    let (f0, fm, f1) = (f(0.0), f(0.5 * frac), f(frac));
+/// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
+/// frac; -inf otherwise (the ends are recorded as step ends).
+fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
     // Parabola through the three samples: concave with its vertex within the step (a little
     // margin, so that a peak just past a sample is not missed).
     let curv = f0 - 2.0 * fm + f1;
