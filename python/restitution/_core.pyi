@@ -15,6 +15,7 @@ def run_cases(
     normal_law: str,
     inertia: str,
     threads: int,
+    overlap: str = "auto",
 ) -> dict[str, np.ndarray]:
     """One impact per row of ``columns``; returns record columns (GIL released)."""
 
@@ -23,6 +24,7 @@ def trace_case(
     vertices: npt.NDArray[np.float64] | None,
     normal_law: str,
     inertia: str,
+    overlap: str = "auto",
 ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
     """The single case in ``columns``: (record columns, per-step trace columns)."""
 

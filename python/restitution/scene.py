@@ -13,6 +13,9 @@ from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape
 INTEGRATORS = ("gear5", "verlet", "reference")
 NORMAL_LAWS = ("area", "linear")
 INERTIAS = ("shape", "sphere")
+#: Overlap paths: what the shape requires (closed form / half-plane clip), or the general
+#: convex-convex intersection through parry (polygons only), to compare the two.
+OVERLAPS = ("auto", "halfplane", "parry")
 
 #: Largest accepted ``dt_factor`` per integrator (the stability bound, with a margin; see docs).
 MAX_DT_FACTOR = {"gear5": 0.03, "verlet": 0.1, "reference": 1.0}
@@ -65,6 +68,9 @@ class Scene:
     """Tangential stiffness (Pa); None: 2 E / 7 (area) or 2 kn / 7 (linear)."""
     inertia: str = "shape"
     """"shape" (exact) or "sphere" (I = 0.4 m r^2, discs only)."""
+    overlap: str = "auto"
+    """Overlap with the plate: "auto" (closed-form segment for a disc, half-plane clip for a
+    polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""
 
     def __post_init__(self) -> None:
         if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon)):
@@ -91,6 +97,12 @@ class Scene:
             check_positive("kt", self.kt)
         if self.inertia == "sphere" and not isinstance(self.shape, Disc):
             raise ValueError('require `inertia` "shape" for polygons ("sphere" applies to discs only)')
+        check_choice("overlap", self.overlap, OVERLAPS)
+        if self.overlap == "parry" and isinstance(self.shape, Disc):
+            raise ValueError(
+                'require `overlap` "auto" or "halfplane" for a Disc (found "parry": the parry path '
+                "intersects polygons; use a RegularPolygon with large n to compare)"
+            )
 
     @classmethod
     def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:

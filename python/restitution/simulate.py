@@ -92,10 +92,12 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
     omega = check_finite("omega_in", omega_in)
     cols = build_columns(scene, {"theta_deg": np.array([theta]), "omega_in": np.array([omega])}, 1)
     if trace:
-        raw, tr = _core.trace_case(cols, template_vertices(scene), scene.normal_law, scene.inertia)
+        raw, tr = _core.trace_case(cols, template_vertices(scene), scene.normal_law, scene.inertia,
+                                   overlap=scene.overlap)
         trace_frame: pl.DataFrame | None = pl.DataFrame(dict(tr))
     else:
-        raw = _core.run_cases(cols, template_vertices(scene), scene.normal_law, scene.inertia, 1)
+        raw = _core.run_cases(cols, template_vertices(scene), scene.normal_law, scene.inertia, 1,
+                               overlap=scene.overlap)
         trace_frame = None
     row = records_frame(raw).row(0, named=True)
     return Record(theta_deg=theta, omega_in=omega, trace=trace_frame, **{k: row[k] for k in RECORD_COLUMNS})

@@ -197,7 +197,7 @@ def _engine(scene: Scene, per_case: Mapping[str, np.ndarray], n: int, threads: i
             normal_law: str, inertia: str, offset: int, idx: np.ndarray | None) -> dict[str, np.ndarray]:
     cols = build_columns(scene, per_case, n)
     try:
-        return dict(_core.run_cases(cols, verts, normal_law, inertia, threads))
+        return dict(_core.run_cases(cols, verts, normal_law, inertia, threads, overlap=scene.overlap))
     except ValueError as err:
         # The engine numbers cases within this call; users need the index in the whole sweep.
         m = _CASE_PREFIX.match(str(err))

@@ -235,10 +235,23 @@ fn records_to_dict<'py>(py: Python<'py>, recs: &[core::Record]) -> PyResult<Boun
     Ok(out)
 }
 
+/// Applies the overlap path ("auto", "halfplane" or "parry") to every case; parry is
+/// refused for a disc.
+fn set_overlap(cases: &mut [core::Case], name: &str) -> Result<(), PyCoreError> {
+    let method = core::OverlapMethod::from_name(name).map_err(|e| PyCoreError(e, None))?;
+    for (i, case) in cases.iter_mut().enumerate() {
+        method
+            .check_shape(&case.scene.shape)
+            .map_err(|e| PyCoreError(e, Some(i)))?;
+        case.scene.overlap = method;
+    }
+    Ok(())
+}
+
 /// Runs one impact per row of `columns` (a dict of equal-length 1-D arrays) in parallel on
 /// `threads` threads (0: all cores) with the GIL released. Returns a dict of result columns.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, normal_law, inertia, threads))]
+#[pyo3(signature = (columns, vertices, normal_law, inertia, threads, overlap="auto"))]
 fn run_cases<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
@@ -246,10 +259,12 @@ fn run_cases<'py>(
     normal_law: &str,
     inertia: &str,
     threads: usize,
+    overlap: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cols = read_columns(columns)?;
     let vertices = read_vertices(vertices)?;
-    let cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    let mut cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    set_overlap(&mut cases, overlap)?;
     let recs = py
         .detach(|| core::run_cases(&cases, threads))
         .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
@@ -258,17 +273,19 @@ fn run_cases<'py>(
 
 /// Runs the single case in `columns` (length 1) and returns (record columns, trace columns).
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, normal_law, inertia))]
+#[pyo3(signature = (columns, vertices, normal_law, inertia, overlap="auto"))]
 fn trace_case<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
     normal_law: &str,
     inertia: &str,
+    overlap: &str,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
     let cols = read_columns(columns)?;
     let vertices = read_vertices(vertices)?;
-    let cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    let mut cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    set_overlap(&mut cases, overlap)?;
     let [case] = cases.as_slice() else {
         return Err(PyValueError::new_err(format!(
             "trace_case takes exactly one case (found {})",
