@@ -266,8 +266,8 @@ fn estrin10(c: &[f64; 10], x: f64, x2: f64, x4: f64, x8: f64) -> f64 {
 /// Written in terms of the depth delta = r - y so that tiny overlaps keep full relative precision:
 /// a power series in delta / (2 r) for shallow overlaps (every contact of the paper preset), the
 /// closed form beyond.
-#[inline]
-fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
+#[inline(always)]
+pub(crate) fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
     let depth = r - y;
     if depth <= 0.0 {
         return None;

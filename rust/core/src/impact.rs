@@ -1,6 +1,6 @@
 //! One impact, from first touch to separation: the record of MODEL.md and an optional trace.
 
-use crate::contact::{Contact, Dof, Forces};
+use crate::contact::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate};
 use crate::error::{Error, Result};
 use crate::geometry::Shape;
 use crate::integrate::{Gear5, Stepper, Verlet};
@@ -120,12 +120,6 @@ pub fn simulate_with_trace(scene: &Scene, init: &Initial) -> Result<(Record, Tra
     Ok((rec, trace))
 }
 
-/// Signed depth of the lowest point below the plate (negative when clear).
-#[inline]
-fn signed_depth(shape: &Shape, y: f64, phi: f64) -> f64 {
-    shape.touch_height(phi) - y
-}
-
 /// Elastic potential of the normal law at depth `depth` below touch, orientation `phi`,
 /// translation only (J/m).
 fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
@@ -213,18 +207,45 @@ fn kinetic_energy(model: &Model, v: &Dof) -> f64 {
     0.5 * model.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * model.inertia * v[2] * v[2]
 }
 
+/// Integrates one impact with `stepper`, the loop compiled separately for the exact disc and
+/// for other shapes (see [`PlateGeometry`]).
 fn integrate<S: Stepper>(
     model: &Model,
     init: &Initial,
+    stepper: S,
+    max_steps: u64,
+    trace: Option<&mut Trace>,
+) -> Record {
+    match &model.scene.shape {
+        Shape::Disc { r } => {
+            integrate_on(model, init, stepper, DiscPlate { r: *r }, max_steps, trace)
+        }
+        shape => {
+            let method = model.scene.overlap;
+            integrate_on(
+                model,
+                init,
+                stepper,
+                ShapePlate { shape, method },
+                max_steps,
+                trace,
+            )
+        }
+    }
+}
+
+fn integrate_on<S: Stepper, G: PlateGeometry>(
+    model: &Model,
+    init: &Initial,
     mut stepper: S,
+    geometry: G,
     mut max_steps: u64,
     mut trace: Option<&mut Trace>,
 ) -> Record {
     let contact_budget = max_steps;
-    let shape = &model.scene.shape;
     let dt = model.dt;
     let inv_mass = [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia];
-    let mut contact = Contact::new(model);
+    let mut contact = Contact::new(model, geometry);
     let mut rec = Record {
         contacts: 1,
         ..Record::default()
@@ -232,9 +253,12 @@ fn integrate<S: Stepper>(
     let v_in = stepper.velocity();
     rec.energy_in = kinetic_energy(model, &v_in);
 
-    // Trapezoidal quadrature of the powers; at touch every force is zero.
+    // Trapezoidal quadrature of the powers. At touch every force is zero, so the work is
+    // dt (p_1 + ... + p_n) - dt p_n / 2: sums of the powers and the last ones are enough.
+    let (mut s_el, mut s_d, mut s_t) = (0.0, 0.0, 0.0);
     let (mut p_el, mut p_d, mut p_t) = (0.0, 0.0, 0.0);
-    let (mut w_el, mut w_d, mut w_t) = (0.0, 0.0, 0.0);
+    let (mut max_area, mut max_depth) = (0.0f64, 0.0f64);
+    let mut steps = 0u64;
     let (mut in_contact, mut contact_start, mut prev_depth) = (true, 0.0, 0.0);
     if let Some(tr) = trace.as_deref_mut() {
         tr.push(
@@ -247,25 +271,31 @@ fn integrate<S: Stepper>(
         );
     }
     loop {
-        if rec.steps >= max_steps {
+        if steps >= max_steps {
             rec.timed_out = true;
             break;
         }
         let f = stepper.step(&mut contact, dt, &inv_mass);
-        rec.steps += 1;
-        let t = rec.steps as f64 * dt;
+        steps += 1;
         let (q, v) = (stepper.position(), stepper.velocity());
-        let (n_el, n_d, n_t) = f.powers(q[1], &v);
-        w_el += 0.5 * (p_el + n_el) * dt;
-        w_d += 0.5 * (p_d + n_d) * dt;
-        w_t += 0.5 * (p_t + n_t) * dt;
-        (p_el, p_d, p_t) = (n_el, n_d, n_t);
+        (p_el, p_d, p_t) = f.powers(q[1], &v);
+        s_el += p_el;
+        s_d += p_d;
+        s_t += p_t;
+        // Plain comparisons rather than f64::max: the same result for these non-NaN values,
+        // without max's NaN handling in the loop.
         if let Some(o) = f.overlap {
-            rec.max_area = rec.max_area.max(o.area);
+            if o.area > max_area {
+                max_area = o.area;
+            }
         }
-        let depth = signed_depth(shape, q[1], q[2]);
-        rec.max_depth = rec.max_depth.max(depth);
+        let depth = contact.geometry.depth(q[1], q[2]);
+        if depth > max_depth {
+            max_depth = depth;
+        }
+        // Contact starts and ends between steps: crossings interpolated linearly.
         if in_contact && depth <= 0.0 {
+            let t = steps as f64 * dt;
             let frac = prev_depth / (prev_depth - depth);
             rec.contact_time += t - dt + frac * dt - contact_start;
             in_contact = false;
@@ -279,13 +309,14 @@ fn integrate<S: Stepper>(
             let cap = 20.0 * contact_budget as f64;
             max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
         } else if !in_contact && depth > 0.0 {
+            let t = steps as f64 * dt;
             let frac = prev_depth / (prev_depth - depth);
             contact_start = t - dt + frac * dt;
             rec.contacts += 1;
             in_contact = true;
         }
         if let Some(tr) = trace.as_deref_mut() {
-            tr.push(t, &q, &v, &f, depth, contact.spring.xi);
+            tr.push(steps as f64 * dt, &q, &v, &f, depth, contact.spring.xi);
         }
         prev_depth = depth;
         // Done once no part of the particle can reach the plate: its circumscribed circle is
@@ -296,6 +327,12 @@ fn integrate<S: Stepper>(
             break;
         }
     }
+    rec.steps = steps;
+    rec.max_area = max_area;
+    rec.max_depth = max_depth;
+    let w_el = dt * (s_el - 0.5 * p_el);
+    let w_d = dt * (s_d - 0.5 * p_d);
+    let w_t = dt * (s_t - 0.5 * p_t);
     let v = stepper.velocity();
     if in_contact {
         rec.contact_time += rec.steps as f64 * dt - contact_start;

@@ -3,7 +3,7 @@
 //! Each step evaluates the contact law exactly once (the tangential spring is history
 //! dependent, so every evaluation is a committed step).
 
-use crate::contact::{Contact, Dof, Forces};
+use crate::contact::{Contact, Dof, Forces, PlateGeometry};
 
 /// Gear corrector coefficients for second-order equations with velocity-dependent forces.
 const GEAR5_CORRECTOR: [f64; 6] = [
@@ -18,7 +18,12 @@ const GEAR5_CORRECTOR: [f64; 6] = [
 /// A fixed-step integrator over (x, y, phi).
 pub trait Stepper {
     /// Advances one step of `dt`, returning the forces used.
-    fn step(&mut self, contact: &mut Contact, dt: f64, inv_mass: &Dof) -> Forces;
+    fn step<G: PlateGeometry>(
+        &mut self,
+        contact: &mut Contact<G>,
+        dt: f64,
+        inv_mass: &Dof,
+    ) -> Forces;
     /// Current position.
     fn position(&self) -> Dof;
     /// Current velocity.
@@ -46,8 +51,13 @@ impl Gear5 {
 }
 
 impl Stepper for Gear5 {
-    #[inline]
-    fn step(&mut self, contact: &mut Contact, dt: f64, inv_mass: &Dof) -> Forces {
+    #[inline(always)]
+    fn step<G: PlateGeometry>(
+        &mut self,
+        contact: &mut Contact<G>,
+        dt: f64,
+        inv_mass: &Dof,
+    ) -> Forces {
         debug_assert_eq!(dt, self.dt);
         for g in self.g.iter_mut() {
             // Pascal-triangle predictor.
@@ -106,8 +116,13 @@ impl Verlet {
 }
 
 impl Stepper for Verlet {
-    #[inline]
-    fn step(&mut self, contact: &mut Contact, dt: f64, inv_mass: &Dof) -> Forces {
+    #[inline(always)]
+    fn step<G: PlateGeometry>(
+        &mut self,
+        contact: &mut Contact<G>,
+        dt: f64,
+        inv_mass: &Dof,
+    ) -> Forces {
         let mut v_pred = [0.0; 3];
         for i in 0..3 {
             self.q[i] += self.v[i] * dt + 0.5 * self.a[i] * dt * dt;
