@@ -110,9 +110,7 @@ def test_energy_audit_across_a_sweep(product_frame: pl.DataFrame) -> None:
 
 
 @pytest.mark.parametrize("integrator", [
-    pytest.param("gear5", marks=pytest.mark.xfail(strict=True, reason=(
-        "known bug: Gear5 stores v dt and divides by dt again (rust/core/src/integrate.rs, new/velocity), "
-        "so v_x is off by 1 ulp at 13 of 89 angles (e.g. 45 deg) with no tangential force"))),
+    "gear5",
     "verlet",
     "reference",
 ])

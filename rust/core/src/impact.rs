@@ -189,7 +189,7 @@ fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Recor
         Integrator::Verlet => Ok(integrate(
             model,
             init,
-            Verlet::new(q0, v0),
+            Verlet::new(q0, v0, model.dt),
             max_steps,
             trace,
         )),
