@@ -155,12 +155,18 @@ def check_chunk_size(chunk_size: Any) -> int:
     return int(chunk_size)
 
 
+#: Most worker threads a sweep may ask for: far beyond any machine's cores, low enough that a
+#: typo (threads=10**6) is an error rather than an attempt to start a million threads.
+MAX_THREADS = 4096
+
+
 def check_threads(threads: Any) -> int:
-    """``None`` -> 0 (the engine's default: all cores); else an integer >= 1."""
+    """``None`` -> 0 (the engine's default: all cores); else an integer in [1, MAX_THREADS]."""
     if threads is None:
         return 0
-    if isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or threads < 1:
-        raise ValueError(f"require `threads` an integer >= 1 (found {threads!r})")
+    if (isinstance(threads, bool) or not isinstance(threads, (int, np.integer))
+            or not 1 <= threads <= MAX_THREADS):
+        raise ValueError(f"require `threads` an integer in [1, {MAX_THREADS}] (found {threads!r})")
     return int(threads)
 
 

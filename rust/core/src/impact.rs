@@ -10,6 +10,24 @@ use std::f64::consts::PI;
 /// A contact that has not ended after this many estimated contact times is stopped.
 pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
 
+/// Smallest estimated maximal depth, in units of the spacing of doubles at the centre's height
+/// (ulp(r)), that an impact may have: below it the centre's height cannot resolve the overlap
+/// (a grazing impact at theta ~ 1e-10 deg moves the centre by a few ulps) and the contact law
+/// would act on round-off. 2^20 ulps keep the depth to ~1e-6 relative.
+pub const MIN_DEPTH_ULPS: f64 = 1_048_576.0;
+
+/// Where in the last step the depth crossed zero, by linear interpolation (0 when the two
+/// depths are equal, e.g. both exactly zero: never 0 / 0).
+#[inline]
+fn crossing_fraction(prev_depth: f64, depth: f64) -> f64 {
+    let span = prev_depth - depth;
+    if span == 0.0 {
+        0.0
+    } else {
+        prev_depth / span
+    }
+}
+
 /// What one impact returns (public names of MODEL.md).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Record {
@@ -174,6 +192,20 @@ fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Recor
     model.check_initial(init)?;
     let scene = &model.scene;
     let depth_est = estimate_max_depth(model, init)?;
+    let resolution = MIN_DEPTH_ULPS * f64::EPSILON * model.r;
+    if depth_est < resolution {
+        return Err(Error::invalid(
+            "v",
+            init.vx.hypot(init.vy),
+            format!(
+                "large enough that the estimated depth ({depth_est:e} m, at the normal speed \
+                 v sin(theta) = {:e} m/s) resolves in double precision (>= {resolution:e} m at \
+                 r = {} m): raise theta_deg or v, or lower E",
+                init.vy.abs(),
+                model.r
+            ),
+        ));
+    }
     let t_est = PI * depth_est / init.vy.abs();
     let max_steps = (TIMEOUT_CONTACT_TIMES * t_est / model.dt).ceil().min(1e12) as u64 + 10;
     let q0 = [0.0, scene.shape.touch_height(init.phi0), init.phi0];
@@ -296,8 +328,7 @@ fn integrate_on<S: Stepper, G: PlateGeometry>(
         // Contact starts and ends between steps: crossings interpolated linearly.
         if in_contact && depth <= 0.0 {
             let t = steps as f64 * dt;
-            let frac = prev_depth / (prev_depth - depth);
-            rec.contact_time += t - dt + frac * dt - contact_start;
+            rec.contact_time += t - dt + crossing_fraction(prev_depth, depth) * dt - contact_start;
             in_contact = false;
             // The timeout budgets contact, not the free flight of a spinning polygon between
             // contacts: in uniform motion its circumscribed circle clears within
@@ -310,8 +341,7 @@ fn integrate_on<S: Stepper, G: PlateGeometry>(
             max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
         } else if !in_contact && depth > 0.0 {
             let t = steps as f64 * dt;
-            let frac = prev_depth / (prev_depth - depth);
-            contact_start = t - dt + frac * dt;
+            contact_start = t - dt + crossing_fraction(prev_depth, depth) * dt;
             rec.contacts += 1;
             in_contact = true;
         }
