@@ -380,7 +380,7 @@ def test_trace_takes_exactly_one_case() -> None:
 
 
 def test_engine_max_dt_factor_matches_the_python_bounds() -> None:
-    for name, bound in rs.MAX_DT_FACTOR.items():
-        assert _core.max_dt_factor(name) == bound
+    for code, (name, bound) in enumerate(rs.MAX_DT_FACTOR.items()):
+        assert _core.max_dt_factor_for(_columns(integrator=np.array([code])), None, "area", "shape")[0][0] == bound
     with raises_naming(ValueError, "integrator"):
-        _core.max_dt_factor("rk4")
+        _core.max_dt_factor_for(_columns(integrator=np.array([7])), None, "area", "shape")

@@ -15,7 +15,7 @@ from polars.testing import assert_frame_equal
 import restitution as rs
 from restitution.sweep import SweepSpec
 
-CHEAP = rs.Scene(integrator="verlet", dt_factor=0.1)  # ~50 steps per contact: fast, still physical
+CHEAP = rs.Scene(integrator="verlet", dt_factor=0.09)  # ~55 steps per contact: fast, still physical (below the 5-gon's bound)
 
 
 def _axes() -> dict[str, Any]:

@@ -7,7 +7,7 @@ from typing import Any, Mapping
 import numpy as np
 import polars as pl
 
-from .scene import INERTIAS, INTEGRATORS, MAX_DT_FACTOR, NORMAL_LAWS, Scene
+from .scene import INERTIAS, INTEGRATORS, NORMAL_LAWS, Scene
 from .shapes import ConvexPolygon, Disc
 
 #: Float columns, in the engine's order.
@@ -109,34 +109,84 @@ def validate_axis(name: str, values: Any, scene: Scene) -> np.ndarray:
 
 
 def check_combinations(scene: Scene, validated: Mapping[str, np.ndarray], *, rows: bool) -> None:
-    """Rules that tie two parameters: dt_factor against each integrator's stability bound, and
+    """Rules that tie two parameters: dt_factor against each case's stability bound, and
     sphere inertia only for discs. ``rows``: the arrays are per-case columns (a cases table),
     else independent axes of a Cartesian product (every combination occurs)."""
     base = scene_defaults(scene)
     def col(name: str) -> np.ndarray:
         return validated[name] if name in validated else np.array([base[name]])
-    dt, integ = col("dt_factor"), col("integrator")
-    bounds = np.array([MAX_DT_FACTOR[name] for name in INTEGRATORS])
-    if rows:
-        dt_b, integ_b = np.broadcast_arrays(dt, integ)
-        bad = dt_b > bounds[integ_b]
-        if np.any(bad):
-            i = int(np.argmax(bad))
-            name = INTEGRATORS[int(integ_b[i])]
-            raise ValueError(f"case {i}: require `dt_factor` in (0, {MAX_DT_FACTOR[name]}] for the {name} "
-                             f"integrator (its stability bound; found {dt_b[i]})")
-    else:
-        for code in np.unique(integ):
-            name = INTEGRATORS[int(code)]
-            if dt.max() > MAX_DT_FACTOR[name]:
-                raise ValueError(f"require `dt_factor` in (0, {MAX_DT_FACTOR[name]}] for the {name} "
-                                 f"integrator (its stability bound; found {dt.max()})")
+    _check_dt_bound(scene, validated, rows=rows)
     sphere = col("inertia") == INERTIAS.index("sphere")
     polygon = col("n") != 0 if not isinstance(scene.shape, ConvexPolygon) else np.array([True])
     clash = (sphere & polygon) if rows else np.array([sphere.any() and polygon.any()])
     if np.any(clash):
         where = f"case {int(np.argmax(clash))}: " if rows else ""
         raise ValueError(f'{where}require `inertia` "shape" for polygons ("sphere" applies to discs, n = 0, only)')
+
+
+#: Axes the stability bound does not depend on: it holds for any speed, angle, spin and orientation.
+_BOUND_FREE = ("theta_deg", "omega_in", "v", "phi0_deg", "dt_factor")
+
+#: Largest number of cases (or combinations of the bound's axes) checked here; beyond it the
+#: engine still refuses each case, naming it and its bound.
+_BOUND_CHECK_MAX = 200_000
+
+
+def dt_bounds(scene: Scene, cols: Mapping[str, np.ndarray], n: int, explain: bool = False) -> tuple[np.ndarray, list[str]]:
+    """Each case's largest ``dt_factor`` (one formula, in the engine) and, with ``explain``, what sets it."""
+    from . import _core
+
+    laws = cols.get("normal_law", np.full(n, NORMAL_LAWS.index(scene.normal_law)))
+    inertias = cols.get("inertia", np.full(n, INERTIAS.index(scene.inertia)))
+    full = build_columns(scene, {k: v for k, v in cols.items() if k not in ("normal_law", "inertia")}, n)
+    bounds, reasons = np.empty(n), [""] * n
+    for law in np.unique(laws):
+        for inertia in np.unique(inertias):
+            sel = np.flatnonzero((laws == law) & (inertias == inertia))
+            if sel.size:
+                sub = {k: np.ascontiguousarray(v[sel]) for k, v in full.items()}
+                b, why = _core.max_dt_factor_for(sub, template_vertices(scene), NORMAL_LAWS[law], INERTIAS[inertia], explain)
+                bounds[sel] = b
+                for i, w in zip(sel, why or ()):
+                    reasons[i] = w
+    return bounds, reasons
+
+
+def _check_dt_bound(scene: Scene, validated: Mapping[str, np.ndarray], *, rows: bool) -> None:
+    """dt_factor against the stability bound of every case (or combination of axes)."""
+    base = scene_defaults(scene)
+    dt = validated.get("dt_factor", np.array([base["dt_factor"]]))
+    relevant = {k: v for k, v in validated.items() if k not in _BOUND_FREE}
+    if rows:
+        n = max([len(v) for v in validated.values()] + [1])
+        if n > _BOUND_CHECK_MAX:
+            return
+        cols = {k: np.broadcast_to(v, n) for k, v in relevant.items()}
+        bounds, _ = dt_bounds(scene, cols, n)
+        bad = np.broadcast_to(dt, n) > bounds
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            _, why = dt_bounds(scene, {k: v[i:i + 1] for k, v in cols.items()}, 1, explain=True)
+            integ = INTEGRATORS[int(np.broadcast_to(validated.get("integrator", base["integrator"]), n)[i])]
+            raise ValueError(f"case {i}: require `dt_factor` in (0, {bounds[i]}] for the {integ} integrator "
+                             f"({why[0]}; found {np.broadcast_to(dt, n)[i]})")
+        return
+    sizes = [len(v) for v in relevant.values()]
+    n = int(np.prod(sizes)) if sizes else 1
+    if n > _BOUND_CHECK_MAX:
+        return
+    grids = np.meshgrid(*relevant.values(), indexing="ij") if relevant else []
+    cols = {k: g.ravel() for k, g in zip(relevant, grids)}
+    bounds, _ = dt_bounds(scene, cols, n)
+    i = int(np.argmin(bounds))
+    if dt.max() > bounds[i]:
+        one = {k: v[i:i + 1] for k, v in cols.items()}
+        _, why = dt_bounds(scene, one, 1, explain=True)
+        integ = INTEGRATORS[int(one["integrator"][0]) if "integrator" in one else base["integrator"]]
+        where = ", ".join(f"{k} = {CHOICE_AXES[k][int(v[0])] if k in CHOICE_AXES else v[0]}" for k, v in one.items())
+        at = f" at {where}" if where else ""
+        raise ValueError(f"require `dt_factor` in (0, {bounds[i]}] for the {integ} integrator{at} "
+                         f"({why[0]}; found {dt.max()})")
 
 
 def build_columns(scene: Scene, per_case: Mapping[str, np.ndarray], n_cases: int) -> dict[str, np.ndarray]:

@@ -17,8 +17,6 @@ INERTIAS = ("shape", "sphere")
 #: convex-convex intersection through parry (polygons only), to compare the two.
 OVERLAPS = ("auto", "halfplane", "parry")
 
-#: Largest accepted ``dt_factor`` per integrator (the stability bound, with a margin; see docs).
-MAX_DT_FACTOR = {"gear5": 0.03, "verlet": 0.1, "reference": 1.0}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -56,7 +54,8 @@ class Scene:
     """"gear5" (the study's), "verlet" (cheap) or "reference" (adaptive Dormand-Prince 5(4) with the
     contact's switches located: accurate to about 1e-10, a few times slower than gear5 at dt_factor 1)."""
     dt_factor: float = 0.01
-    """dt = dt_factor * t_ref; at most ``MAX_DT_FACTOR[integrator]``. For "reference" it is the largest
+    """dt = dt_factor * t_ref; at most ``max_dt_factor`` (the integrator's stability bound for this scene's
+    stiffness and damping: 0.0648 for gear5, 0.108 for verlet on the preset). For "reference" it is the largest
     (and first) step instead: its accuracy is set by its tolerance, so use dt_factor=1 for speed."""
     normal_law: str = "area"
     """"area" (force proportional to overlap area) or "linear" (spring-dashpot on the depth)."""
@@ -82,13 +81,6 @@ class Scene:
         check_choice("integrator", self.integrator, INTEGRATORS)
         check_choice("normal_law", self.normal_law, NORMAL_LAWS)
         check_choice("inertia", self.inertia, INERTIAS)
-        bound = MAX_DT_FACTOR[self.integrator]
-        dtf = check_real("dt_factor", self.dt_factor)
-        if not (math.isfinite(dtf) and 0.0 < dtf <= bound):  # one message, with the bound, for NaN too
-            raise ValueError(
-                f"require `dt_factor` in (0, {bound}] for the {self.integrator} integrator "
-                f"(its stability bound; found {dtf})"
-            )
         if self.kn is not None:
             check_positive("kn", self.kn)
         if self.cn is not None:
@@ -103,6 +95,12 @@ class Scene:
                 'require `overlap` "auto" or "halfplane" for a Disc (found "parry": the parry path '
                 "intersects polygons; use a RegularPolygon with large n to compare)"
             )
+        # Last: the bound depends on every other field (the scene's stiffness and damping).
+        dtf = check_real("dt_factor", self.dt_factor)
+        bound = self.max_dt_factor
+        if not (math.isfinite(dtf) and 0.0 < dtf <= bound):  # one message, with the bound, for NaN too
+            why = _dt_bounds(self, explain=True)[1][0]
+            raise ValueError(f"require `dt_factor` in (0, {bound}] for the {self.integrator} integrator ({why}; found {dtf})")
 
     @classmethod
     def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:
@@ -114,6 +112,29 @@ class Scene:
         return dataclasses.replace(self, **changes)
 
     @property
+    def max_dt_factor(self) -> float:
+        """Largest ``dt_factor`` this scene accepts: its integrator's stability bound for its
+        stiffness and damping (E, kn, kt, gamma, cn, gamma_t, mu, shape), with a margin of 2.
+        It holds for any v, theta and spin. Computed by the engine (one formula; see the
+        documentation of ``restitution_core::stability``)."""
+        return float(_dt_bounds(self)[0][0])
+
+    @property
     def r(self) -> float:
         """Circumradius of the particle (m)."""
         return float(self.shape.r)
+
+
+def _dt_bounds(scene: Scene, explain: bool = False) -> tuple[Any, list[str] | None]:
+    """The engine's bound (and, with ``explain``, what sets it) for a scene, as one case."""
+    from . import _core
+    from ._columns import build_columns, template_vertices
+
+    cols = build_columns(scene, {}, 1)
+    return _core.max_dt_factor_for(cols, template_vertices(scene), scene.normal_law, scene.inertia, explain)
+
+
+#: Largest accepted ``dt_factor`` per integrator for the study's preset on the exact disc,
+#: ``Scene()``; ``Scene.paper()`` (the 120-gon) is within 0.2 %. Another scene's own bound,
+#: which depends on its stiffness and damping, is ``scene.max_dt_factor``.
+MAX_DT_FACTOR = {name: Scene(integrator=name).max_dt_factor for name in INTEGRATORS}

@@ -130,6 +130,12 @@ pub fn simulate(scene: &Scene, init: &Initial) -> Result<Record> {
     run(&model, init, None)
 }
 
+/// Simulates one impact of an already derived model, without [`Model::new`]'s checks of
+/// `dt_factor` (used to measure the stability bound above it; see `tests/stability.rs`).
+pub fn simulate_model(model: &Model, init: &Initial) -> Result<Record> {
+    run(model, init, None)
+}
+
 /// Simulates one impact and records every step.
 pub fn simulate_with_trace(scene: &Scene, init: &Initial) -> Result<(Record, Trace)> {
     let model = Model::new(scene)?;

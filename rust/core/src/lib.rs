@@ -27,14 +27,18 @@ pub mod integrate;
 pub mod obstacle;
 pub mod reference;
 pub mod scene;
+pub mod stability;
 pub mod sweep;
 pub mod tangential;
 
 pub use error::{Error, Result};
 pub use geometry::{Overlap, OverlapMethod, Polygon, Shape};
 pub use obstacle::{ConvexObstacle, Patch};
-pub use impact::{estimate_max_depth, simulate, simulate_with_trace, Record, Trace};
+pub use impact::{
+    estimate_max_depth, simulate, simulate_model, simulate_with_trace, Record, Trace,
+};
 pub use reference::{simulate_reference, simulate_reference_with_trace, ReferenceOptions};
 pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};
+pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};
 pub use sweep::{run_cases, Case};
 pub use tangential::StickState;

@@ -44,33 +44,28 @@ pub enum Integrator {
 }
 
 impl Integrator {
-    /// Largest accepted `dt_factor` for this integrator: the measured stability bound divided
-    /// by a safety margin of 2 (and rounded down).
+    /// Largest accepted stiffness index h = dt * (fastest rate of the contact), the measured
+    /// stability bound divided by a safety margin of 2 (and rounded down); see
+    /// [`crate::stability`] for the rates.
     ///
-    /// Measured on the exact disc (preset r, rho, E) by scanning `dt_factor` upward in steps of
-    /// 3 % over the stiffest scenes (`stiff_scenes` in `tests/physics.rs`): head-on, and 10, 45,
-    /// 80 deg at full stick (mu = 1, gamma_t = 0; also 0.5; disc and sphere inertia), gamma 0,
-    /// 0.33 and 10, at the preset v and at a deep impact (depth ~ 0.4 r); the linear law with
-    /// kn = E (the stiffest normal law) at zeta 0, 0.1 and 1. A run counts as stable when it
-    /// is finite and separates, gains no energy where the scene dissipates (> 1e-6 relative;
-    /// a conservative scene may err either way by <= 1 %), |energy_residual| <= 1e-2, and
-    /// halving dt changes vx', vy' and r omega' by <= 5 % of v. The largest `dt_factor` below
-    /// which every scene is stable:
-    /// - Gear-5: 0.065, set by velocity-dependent forces (linear law at zeta = 1 in full
-    ///   stick, r omega' off by > 5 %; area law gamma = 10 deep at 0.069). Gear-5 takes its
-    ///   forces from predicted velocities, which bounds c dt / m tightly.
-    /// - Verlet: 0.226, set by the undamped linear law head-on (energy error > 1 % with 14
-    ///   steps per contact); the sphere at full stick follows at 0.27.
+    /// Measured by scanning h upward (`tests/stability.rs`, `measure`) over the disc, the
+    /// 120-gon and a square (face and corner first), head-on and oblique, mu 0 and 1 (full
+    /// stick), the area law with gamma 0 ... 1e3 and the linear law (disc) with zeta 0 ... 100,
+    /// gamma_t 0 ... 100, at the preset speed and a deep impact (depth ~ 0.45 r), with the
+    /// criteria of that file (finite, no energy gain, |energy_residual| <= 1e-2, and at the
+    /// preset speed halving dt moves the result by <= 5 % of v). First failures:
+    /// - Gear-5: h = 0.1355 (linear law, zeta = 1 and 10, full stick: r omega' moves by > 5 %
+    ///   when dt halves); so 0.065.
+    /// - Verlet: h = 0.2016 (undamped linear law head-on: energy error > 1 %); so 0.098.
     ///
-    /// So 0.03 and 0.1 (the default 0.01 is inside both). The bound assumes the defaults'
-    /// stiffness ratios: kt <= 2 E / 7, gamma <= 10, cn at most critical; stronger damping
-    /// needs smaller steps (gamma = 1e5 gains energy even at dt_factor 0.01).
-    /// `Reference` is adaptive; its value is its largest step.
-    pub fn max_dt_factor(self) -> f64 {
+    /// On the preset (fastest rate: the tangential spring, sqrt(6 / 7) / t_ref) that gives
+    /// `dt_factor` <= 0.0702 (Gear-5) and 0.105 (Verlet), above the former fixed 0.03 and 0.1.
+    /// `Reference` is adaptive: its `dt_factor` is only its largest step, at most 1.
+    pub fn max_stiffness_index(self) -> f64 {
         match self {
-            Integrator::Gear5 => 0.03,
-            Integrator::Verlet => 0.1,
-            Integrator::Reference => 1.0,
+            Integrator::Gear5 => 0.065,
+            Integrator::Verlet => 0.098,
+            Integrator::Reference => f64::INFINITY,
         }
     }
 
@@ -203,8 +198,16 @@ pub struct Model {
 }
 
 impl Model {
-    /// Validates the scene and derives the constants.
+    /// Validates the scene and derives the constants; refuses a `dt_factor` above the scene's
+    /// stability bound ([`Model::max_dt_factor`]).
     pub fn new(scene: &Scene) -> Result<Self> {
+        let model = Self::derive(scene)?;
+        model.check_dt()?;
+        Ok(model)
+    }
+
+    /// Everything of [`Model::new`] except the checks of `dt_factor` and `dt`.
+    pub(crate) fn derive(scene: &Scene) -> Result<Self> {
         positive("rho", scene.rho)?;
         positive("E", scene.e_modulus)?;
         non_negative("gamma", scene.gamma)?;
@@ -213,16 +216,6 @@ impl Model {
         if let Some(kt) = scene.kt {
             positive("kt", kt)?;
         }
-        let bound = scene.integrator.max_dt_factor();
-        ensure_param!(
-            scene.dt_factor.is_finite() && scene.dt_factor > 0.0 && scene.dt_factor <= bound,
-            "dt_factor",
-            scene.dt_factor,
-            format!(
-                "in (0, {bound}] (stability bound of the {} integrator)",
-                scene.integrator.name()
-            )
-        );
         let r = scene.shape.circumradius();
         positive("r", r)?;
         scene.overlap.check_shape(&scene.shape)?;
@@ -257,7 +250,6 @@ impl Model {
         for (name, v) in [
             ("mass", mass),
             ("inertia", inertia),
-            ("dt", dt),
             ("kt", kt),
             ("ct", ct),
             ("area_damping", area_damping),

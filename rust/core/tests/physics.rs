@@ -150,20 +150,22 @@ fn energy_residual_shrinks_with_dt() {
     // Gear-5: the residual is the audit's quadrature error against the integrator's, and
     // must shrink as dt does.
     for (gamma, mu, theta) in [(0.33, 0.5, 45.0), (10.0, 0.0, 90.0), (10.0, 1.0, 30.0)] {
+        // gamma = 10 bounds dt_factor at 0.013 (the damping rate, tests/stability.rs): halve.
+        let scale = if gamma > 1.0 { 0.5 } else { 1.0 };
         let res: Vec<f64> = [0.02, 0.01, 0.005]
             .iter()
             .map(|&dt_factor| {
                 let scene = Scene {
                     gamma,
                     mu,
-                    dt_factor,
+                    dt_factor: dt_factor * scale,
                     ..Scene::default()
                 };
                 run(&scene, &at(theta, 0.0)).energy_residual.abs()
             })
             .collect();
         let sci_res = sci(&res);
-        eprintln!("gear5 |energy_residual| at dt_factor 0.02, 0.01, 0.005 (gamma {gamma}, mu {mu}, theta {theta}): {sci_res}");
+        eprintln!("gear5 |energy_residual| at dt_factor (0.02, 0.01, 0.005) x {scale} (gamma {gamma}, mu {mu}, theta {theta}): {sci_res}");
         assert!(
             res[0] > res[1] && res[1] > res[2],
             "gamma {gamma} mu {mu}: {sci_res}"
@@ -634,24 +636,24 @@ fn overdamped_creep_times_out_instead_of_hanging() {
     // depth relaxes on the time gamma t_ref, so the contact time grows in proportion to
     // gamma (checked below) while the budget, 100 contact times estimated without damping,
     // does not. At gamma = 2000 the contact cannot end within the budget.
-    let contact = |gamma: f64| {
+    // Each at its own dt bound (0.0013 at gamma = 100; it falls as 1 / gamma).
+    let at_bound = |gamma: f64| {
         let scene = Scene {
             gamma,
-            dt_factor: 0.005,
             ..Scene::default()
         };
-        run(&scene, &at(60.0, 0.0))
+        Scene {
+            dt_factor: restitution_core::max_dt_factor(&scene).unwrap(),
+            ..scene
+        }
     };
+    let contact = |gamma: f64| run(&at_bound(gamma), &at(60.0, 0.0));
     let (r100, r1000) = (contact(100.0), contact(1000.0));
     assert!(r100.separated && r1000.separated && !r1000.timed_out);
     let ratio = r1000.contact_time / r100.contact_time;
     assert!((8.0..12.0).contains(&ratio), "contact time ratio {ratio}");
 
-    let scene = Scene {
-        gamma: 2000.0,
-        dt_factor: 0.005,
-        ..Scene::default()
-    };
+    let scene = at_bound(2000.0);
     let init = at(60.0, 0.0);
     let rec = run(&scene, &init);
     assert!(rec.timed_out && !rec.separated);
@@ -796,7 +798,7 @@ fn bad_input_is_an_error_naming_the_parameter() {
         (
             "dt_factor",
             Scene {
-                dt_factor: 1.001 * Integrator::Gear5.max_dt_factor(),
+                dt_factor: 1.001 * restitution_core::max_dt_factor(&Scene::default()).unwrap(),
                 ..Scene::default()
             },
         ),
@@ -804,7 +806,12 @@ fn bad_input_is_an_error_naming_the_parameter() {
             "dt_factor",
             Scene {
                 integrator: Integrator::Verlet,
-                dt_factor: 1.001 * Integrator::Verlet.max_dt_factor(),
+                dt_factor: 1.001
+                    * restitution_core::max_dt_factor(&Scene {
+                        integrator: Integrator::Verlet,
+                        ..Scene::default()
+                    })
+                    .unwrap(),
                 ..Scene::default()
             },
         ),
@@ -938,7 +945,7 @@ fn bad_input_is_an_error_naming_the_parameter() {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Time-step stability bound (see `Integrator::max_dt_factor` for the measurement).
+// Time-step stability bound (see `restitution_core::stability`; measured in tests/stability.rs).
 
 /// The stiffest scenes the bound must hold for: head-on and oblique; full stick (mu = 1,
 /// gamma_t = 0, also 0.5), disc and sphere inertia; gamma 0, 0.33 and 10; the preset speed and
@@ -1109,13 +1116,14 @@ fn unstable(scene: &Scene, init: &Initial) -> Option<String> {
 fn stiffest_scenes_are_stable_at_the_dt_bound() {
     let scenes = stiff_scenes();
     for integrator in BOTH {
-        let bound = integrator.max_dt_factor();
         for (name, scene, init) in &scenes {
-            let scene = Scene {
+            let mut scene = Scene {
                 integrator,
-                dt_factor: bound,
                 ..scene.clone()
             };
+            // The scene's own bound (it depends on its stiffness and damping).
+            let bound = restitution_core::max_dt_factor(&scene).unwrap();
+            scene.dt_factor = bound;
             if let Some(why) = unstable(&scene, init) {
                 panic!("{integrator:?} at dt_factor {bound}: {name}: {why}");
             }

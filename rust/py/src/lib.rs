@@ -316,24 +316,43 @@ fn trace_case<'py>(
     Ok((records_to_dict(py, &[rec])?, out))
 }
 
-/// Largest `dt_factor` each integrator accepts.
+/// Largest `dt_factor` each case of `columns` accepts: its integrator's stability bound for
+/// that case's stiffness and damping (`restitution_core::max_dt_factor`; the column
+/// `dt_factor` itself is ignored). With `explain`, also what sets each bound, in words.
+/// Invalid other parameters raise `ValueError` naming the case.
 #[pyfunction]
-fn max_dt_factor(integrator: &str) -> PyResult<f64> {
-    match integrator {
-        "gear5" => Ok(core::Integrator::Gear5.max_dt_factor()),
-        "verlet" => Ok(core::Integrator::Verlet.max_dt_factor()),
-        "reference" => Ok(core::Integrator::Reference.max_dt_factor()),
-        other => Err(PyValueError::new_err(format!(
-            "require `integrator` one of \"gear5\", \"verlet\", \"reference\" (found {other:?})"
-        ))),
+#[pyo3(signature = (columns, vertices, normal_law, inertia, explain=false))]
+fn max_dt_factor_for<'py>(
+    py: Python<'py>,
+    columns: &Bound<'py, PyDict>,
+    vertices: Option<PyReadonlyArray2<'py, f64>>,
+    normal_law: &str,
+    inertia: &str,
+    explain: bool,
+) -> PyResult<(Bound<'py, PyArray1<f64>>, Option<Vec<String>>)> {
+    let cols = read_columns(columns)?;
+    let vertices = read_vertices(vertices)?;
+    let cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    let mut bounds = Vec::with_capacity(cases.len());
+    let mut reasons = Vec::new();
+    for (i, case) in cases.iter().enumerate() {
+        if explain {
+            let (b, why) =
+                core::max_dt_factor_reason(&case.scene).map_err(|e| PyCoreError(e, Some(i)))?;
+            bounds.push(b);
+            reasons.push(why);
+        } else {
+            bounds.push(core::max_dt_factor(&case.scene).map_err(|e| PyCoreError(e, Some(i)))?);
+        }
     }
+    Ok((PyArray1::from_vec(py, bounds), explain.then_some(reasons)))
 }
 
 /// The compiled engine of the `restitution` package.
 #[pymodule]
 mod _core {
     #[pymodule_export]
-    use super::{max_dt_factor, run_cases, trace_case};
+    use super::{max_dt_factor_for, run_cases, trace_case};
 
     #[pymodule_init]
     fn init(m: &pyo3::Bound<'_, pyo3::types::PyModule>) -> pyo3::PyResult<()> {

@@ -1,0 +1,286 @@
+//! The time-step bound of a scene: how fast the contact's linearised equations of motion can
+//! change the state, and the largest `dt_factor` each integrator stays stable with.
+//!
+//! A fixed-step integrator is stable while dt times the largest eigenvalue modulus of the
+//! linearised equations stays inside its stability region. For a damped oscillator that
+//! modulus is at most max(omega, c / m) (omega when underdamped, below c / m when overdamped),
+//! so the *stiffness index* of a scene is h = dt * max(omega_n, lambda_n, omega_t, lambda_t)
+//! with the four rates below, each an upper bound over every state the contact can reach
+//! (depth up to r, any orientation), so that the bound holds whatever v and theta are. Each
+//! integrator accepts h up to [`Integrator::max_stiffness_index`], measured by scanning
+//! `dt_factor` over stiff and strongly damped scenes (`tests/stability.rs`).
+//!
+//! The rates, for mass m, moment of inertia I = kappa m r^2 and circumradius r:
+//! - Area law, elastic: the potential is (E / L) times the overlap's first moment, so moving
+//!   the body changes the force by (E / L) per unit of chord it sweeps: the chord acts as a
+//!   bed of vertical springs of density E / L. On a chord of length l centred x_mid off the
+//!   centre the stiffness matrix in (y, phi) is (E / L) integral [1, x; x, x^2] dx, and the
+//!   largest eigenvalue of M^-1 K is at most its trace,
+//!   (E / L) l (1 / m + (x_mid^2 + l^2 / 12 + mu r x_mid) / I)
+//!   (the mu term: a slipping contact's friction mu F_n acts at an arm <= r). The chord lies
+//!   inside the circumscribed circle: l = 2 r u, |x_mid| <= r (1 - u), u in [0, 1]. The
+//!   rotation of the overlap itself adds a negative (destabilising, not oscillating) term,
+//!   left out. A disc's force passes through its centre: only (E / L) l / m <= E / (2 m).
+//! - Area law, damping: F_d = -c l (v_y + omega x_mid) at the chord midpoint, c = gamma
+//!   sqrt(m E) / L: a rank-one damping matrix with rate c l (1 / m + x_mid (x_mid + mu r) / I),
+//!   maximised over u as above (disc: c 2 r / m = gamma / (2 t_ref)).
+//! - Linear law: k_n times the depth of the lowest point (x_low off centre) at the overlap
+//!   centroid (|c_x| <= r): rate k_n (1 / m + a (1 + mu) r / I), a the largest |x_low| a
+//!   polygon's lowest vertex can have (0 for a disc, r sin(pi / n) for a regular n-gon); the
+//!   same lever with c_n for the damping.
+//! - Tangential (mu > 0): the Cundall-Strack spring at an arm <= r below the centre gives
+//!   omega_t = sqrt(k_t / m_t) and lambda_t = c_t / m_t = gamma_t omega_t, with
+//!   m_t = 1 / (1 / m + r^2 / I).
+
+use crate::error::{ensure_param, Result};
+use crate::geometry::Shape;
+use crate::scene::{Integrator, Model, NormalLaw, Scene};
+
+/// Upper bounds on the rates of the contact's linearised equations of motion (1/s), over
+/// every state the contact can reach.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactRates {
+    /// Angular frequency of the normal spring, rotation coupling included (rad/s).
+    pub normal: f64,
+    /// Decay rate of the normal damper (1/s).
+    pub normal_damping: f64,
+    /// Angular frequency of the tangential spring (rad/s; 0 without friction).
+    pub tangential: f64,
+    /// Decay rate of the tangential damper (1/s; 0 without friction).
+    pub tangential_damping: f64,
+}
+
+impl ContactRates {
+    /// The fastest of the four rates and what it belongs to, in words.
+    pub fn fastest(&self) -> (f64, &'static str) {
+        [
+            (self.normal, "the normal spring"),
+            (self.normal_damping, "the normal damping"),
+            (self.tangential, "the tangential spring"),
+            (self.tangential_damping, "the tangential damping"),
+        ]
+        .into_iter()
+        .fold(
+            (0.0, "the normal spring"),
+            |a, b| if b.0 > a.0 { b } else { a },
+        )
+    }
+}
+
+/// Largest value of `f` on [0, 1], sampled: for the cubics here (slope below 1 + 4 / kappa,
+/// maximum >= 1) 4097 samples miss the maximum by less than 0.1 % unless kappa < 0.1.
+fn max_on_unit(f: impl Fn(f64) -> f64) -> f64 {
+    const N: usize = 4096;
+    (0..=N).map(|k| f(k as f64 / N as f64)).fold(0.0, f64::max)
+}
+
+/// Largest horizontal offset from the centroid that a polygon's lowest point can have: vertex
+/// p is lowest while the downward direction d lies between the outward normals of its two
+/// edges, and its offset |p x d| is largest at an end of that range or where d is
+/// perpendicular to p. 0 for a disc (its lowest point is always below the centre).
+fn lowest_point_arm(shape: &Shape) -> f64 {
+    let v = shape.vertices();
+    let n = v.len();
+    let cross = |a: [f64; 2], b: [f64; 2]| a[0] * b[1] - a[1] * b[0];
+    let unit = |a: [f64; 2]| {
+        let l = a[0].hypot(a[1]);
+        [a[0] / l, a[1] / l]
+    };
+    let mut arm: f64 = 0.0;
+    for i in 0..n {
+        let (prev, p, next) = (v[(i + n - 1) % n], v[i], v[(i + 1) % n]);
+        let p = [p.x, p.y];
+        // Outward normals of the edges (prev, p) and (p, next) of a counter-clockwise polygon.
+        let n1 = unit([p[1] - prev.y, -(p[0] - prev.x)]);
+        let n2 = unit([next.y - p[1], -(next.x - p[0])]);
+        let inside = |d: [f64; 2]| cross(n1, d) >= 0.0 && cross(d, n2) >= 0.0;
+        let len = p[0].hypot(p[1]);
+        arm = arm.max(cross(p, n1).abs()).max(cross(p, n2).abs());
+        if len > 0.0 {
+            let perp = [-p[1] / len, p[0] / len];
+            if inside(perp) || inside([-perp[0], -perp[1]]) {
+                arm = arm.max(len);
+            }
+        }
+    }
+    arm
+}
+
+/// Rounds down to three significant digits, so that the printed bound is itself accepted.
+fn round_down_3(x: f64) -> f64 {
+    if !(x.is_finite() && x > 0.0) {
+        return x;
+    }
+    let exp = x.log10().floor() as i32 - 2;
+    // The 1e-9 keeps an exact decimal (0.065 / 5e4 = 1.3e-6) from flooring to 1.29e-6 on
+    // a rounding error; the margin of 2 dwarfs it.
+    let mantissa = (x * (1.0 + 1e-9) / 10f64.powi(exp)).floor();
+    // Through the decimal text, so that e.g. 0.0123 is the f64 nearest 0.0123.
+    format!("{mantissa}e{exp}").parse().unwrap_or(x)
+}
+
+/// A number for messages: plain when moderate, scientific when tiny.
+fn show(x: f64) -> String {
+    if x >= 1e-3 {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+impl Model {
+    /// Upper bounds on the contact's rates (see the module documentation for the derivation).
+    pub fn contact_rates(&self) -> ContactRates {
+        let s = &self.scene;
+        let (m, r, mu) = (self.mass, self.r, s.mu);
+        let kappa = self.inertia / (m * r * r);
+        let polygon = !matches!(s.shape, Shape::Disc { .. });
+        let (normal, normal_damping) = match s.normal_law {
+            NormalLaw::Area => {
+                // Chord 2 r u, midpoint offset r (1 - u) (0 for a disc).
+                let elastic = max_on_unit(|u| {
+                    let x = if polygon { 1.0 - u } else { 0.0 };
+                    let rot = if polygon {
+                        (x * x + u * u / 3.0 + mu * x) / kappa
+                    } else {
+                        0.0
+                    };
+                    u * (1.0 + rot)
+                });
+                let damping = max_on_unit(|u| {
+                    let x = if polygon { 1.0 - u } else { 0.0 };
+                    u * (1.0 + x * (x + mu) / kappa)
+                });
+                (
+                    (s.e_modulus * 2.0 * r * elastic / (self.length * m)).sqrt(),
+                    self.area_damping * 2.0 * r * damping / m,
+                )
+            }
+            NormalLaw::Linear { kn, cn } => {
+                let lever = 1.0 + lowest_point_arm(&s.shape) * (1.0 + mu) / (kappa * r);
+                ((kn * lever / m).sqrt(), cn * lever / m)
+            }
+        };
+        let (tangential, tangential_damping) = if mu > 0.0 {
+            let mt = 1.0 / (1.0 / m + r * r / self.inertia);
+            ((self.kt / mt).sqrt(), self.ct / mt)
+        } else {
+            (0.0, 0.0)
+        };
+        ContactRates {
+            normal,
+            normal_damping,
+            tangential,
+            tangential_damping,
+        }
+    }
+
+    /// The stiffness index h = dt * (fastest contact rate) of this model.
+    pub fn stiffness_index(&self) -> f64 {
+        self.dt * self.contact_rates().fastest().0
+    }
+
+    /// Largest `dt_factor` this scene accepts with its integrator: the integrator's
+    /// [`Integrator::max_stiffness_index`] over the fastest contact rate, in units of t_ref,
+    /// rounded down to three significant digits (at most 1: `Reference`'s largest step).
+    pub fn max_dt_factor(&self) -> f64 {
+        let h = self.scene.integrator.max_stiffness_index();
+        let rate = self.contact_rates().fastest().0;
+        round_down_3((h / (rate * self.t_ref)).min(1.0))
+    }
+
+    /// What sets [`Model::max_dt_factor`], in words (for messages): the fastest rate, its
+    /// value in units of 1 / t_ref and the integrator's largest stiffness index.
+    pub fn dt_bound_reason(&self) -> String {
+        let s = &self.scene;
+        let (rate, what) = self.contact_rates().fastest();
+        let cause = match (what, s.normal_law) {
+            ("the normal damping", NormalLaw::Area) => format!(" (gamma = {})", s.gamma),
+            ("the normal damping", NormalLaw::Linear { cn, .. }) => format!(" (cn = {cn} Pa s)"),
+            ("the tangential damping", _) => format!(" (gamma_t = {})", s.gamma_t),
+            _ => String::new(),
+        };
+        if s.integrator == Integrator::Reference {
+            "its largest step".to_string()
+        } else {
+            format!(
+                "its stability bound in this scene: the fastest rate, {what}{cause}, is {} / t_ref, \
+                 and dt times it must stay <= {}",
+                show(round_down_3(rate * self.t_ref)),
+                s.integrator.max_stiffness_index()
+            )
+        }
+    }
+
+    /// Refuses a `dt_factor` above the scene's bound, naming the bound and what sets it.
+    pub(crate) fn check_dt(&self) -> Result<()> {
+        let s = &self.scene;
+        let bound = self.max_dt_factor();
+        let why = self.dt_bound_reason();
+        ensure_param!(
+            s.dt_factor.is_finite() && s.dt_factor > 0.0 && s.dt_factor <= bound,
+            "dt_factor",
+            s.dt_factor,
+            format!(
+                "in (0, {}] for the {} integrator ({why})",
+                show(bound),
+                s.integrator.name()
+            )
+        );
+        ensure_param!(
+            self.dt.is_finite() && self.dt > 0.0,
+            "dt",
+            self.dt,
+            "finite and > 0 (check the magnitudes of r, rho and E)"
+        );
+        Ok(())
+    }
+}
+
+/// Largest `dt_factor` a scene accepts (its own `dt_factor` is not checked): see
+/// [`Model::max_dt_factor`]. Errors name any other invalid parameter.
+pub fn max_dt_factor(scene: &Scene) -> Result<f64> {
+    Ok(Model::derive(scene)?.max_dt_factor())
+}
+
+/// [`max_dt_factor`] and [`Model::dt_bound_reason`] of a scene.
+pub fn max_dt_factor_reason(scene: &Scene) -> Result<(f64, String)> {
+    let model = Model::derive(scene)?;
+    Ok((model.max_dt_factor(), model.dt_bound_reason()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lowest_point_arm_of_regular_polygons_is_r_sin_pi_over_n() {
+        for n in [3usize, 4, 5, 12, 120] {
+            let shape = Shape::regular_polygon(1.0, n).unwrap();
+            let want = (std::f64::consts::PI / n as f64).sin();
+            let got = lowest_point_arm(&shape);
+            assert!((got - want).abs() < 1e-12, "n {n}: {got} vs {want}");
+        }
+        assert_eq!(lowest_point_arm(&Shape::disc(1.0).unwrap()), 0.0);
+    }
+
+    #[test]
+    fn rounds_down_to_three_digits() {
+        assert_eq!(round_down_3(0.012_399), 0.0123);
+        assert_eq!(round_down_3(1.239e-6), 1.23e-6);
+        assert_eq!(round_down_3(0.05), 0.05);
+    }
+
+    #[test]
+    fn disc_rates_match_the_closed_forms() {
+        // Disc, area law: omega_n = sqrt(E / (2 m)), lambda_n = gamma / (2 t_ref);
+        // omega_t = sqrt(kt / mt) with mt = m / 3 and kt = 2 E / 7.
+        let model = Model::new(&Scene::default()).unwrap();
+        let rates = model.contact_rates();
+        let t = model.t_ref;
+        assert!((rates.normal * t - 0.5f64.sqrt()).abs() < 1e-12);
+        assert!((rates.normal_damping * t - 0.33 / 2.0).abs() < 1e-12);
+        assert!((rates.tangential * t - (6.0f64 / 7.0).sqrt()).abs() < 1e-12);
+        assert!((rates.tangential_damping * t - 0.5 * (6.0f64 / 7.0).sqrt()).abs() < 1e-12);
+    }
+}
