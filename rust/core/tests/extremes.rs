@@ -177,6 +177,14 @@ fn check(p: &Params) {
                 assert!(expected.starts_with("in (0, "), "{what}: {expected}");
                 stiff = true;
             }
+            Err(Error::InvalidParameter { name, expected, .. })
+                if expected.contains("resolves in double precision") =>
+            {
+                // A clear refusal too: the overlap would be a few hundred ulps of the centre's
+                // height (grazing, stiff, slow corners), below what doubles resolve.
+                assert_eq!(name, "v", "{what}");
+                assert_ne!(p.too_deep(), Some(true), "{what}");
+            }
             Err(Error::InvalidParameter { name, expected, .. }) => {
                 assert_ne!(
                     p.too_deep(),
