@@ -23,6 +23,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import restitution as rs
+    from restitution import figures
 
     if not (0.0 < args.step <= 85.0):
         raise ValueError(f"require `--step` in (0, 85] degrees (found {args.step})")
@@ -36,32 +37,10 @@ def run(args: argparse.Namespace) -> int:
     parquet = args.out / "fig2.parquet"
     df.write_parquet(parquet)
     png = args.out / "fig2.png"
-    plot(df, png, title=f"{args.shape}, paper preset (v = {scene.v} m/s, gamma = {scene.gamma})")
+    figures.fig2(df, r=scene.r, v=scene.v, gamma=scene.gamma, path=png,
+                 title=f"{args.shape}, paper preset (v = {scene.v} m/s, gamma = {scene.gamma})")
     worst = float(df["energy_residual"].abs().max())
     print(f"{df.height} impacts in {elapsed:.2f} s; |energy residual| <= {worst:.1e}")
     print(f"wrote {parquet} and {png}")
     return 0
 
-
-def plot(df, path: Path, title: str) -> None:
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    mus = sorted(df["mu"].unique().to_list())
-    colours = plt.get_cmap("viridis")(np.linspace(0.0, 0.9, len(mus)))  # perceptually ordered, colourblind-safe
-    fig, axes = plt.subplots(1, 3, figsize=(13, 4), constrained_layout=True)
-    for mu, colour in zip(mus, colours):
-        part = df.filter(df["mu"] == mu).sort("theta_deg")
-        for ax, col in zip(axes, ("e_n", "e_t", "e_kin")):
-            ax.plot(part["theta_deg"], part[col], color=colour, label=f"mu = {mu:g}")
-    for ax, label in zip(axes, ("normal restitution $e_N$", "tangential restitution $e_T$",
-                                "kinematic restitution $e_{kin}$")):
-        ax.set_xlabel(r"impact angle $\theta$ (deg from the plate)")
-        ax.set_ylabel(label)
-        ax.grid(alpha=0.3)
-    axes[1].legend(fontsize=7, ncol=2)
-    fig.suptitle(title)
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
