@@ -1,0 +1,194 @@
+"""Property-based tests of the Python API (hypothesis): random scenes within the documented bounds
+keep the invariants of MODEL.md, and random bad input (NaN, inf, wrong types and shapes) is always
+a ValueError or a TypeError, never a crash or a PanicException.
+
+About 10^4 examples in all at the default scale (cheap scenes: Verlet or Gear-5 at the default
+step, small polygons); ``RESTITUTION_HYPOTHESIS_SCALE=10`` multiplies every count
+(``benchmarks/hypothesis_1e5.py`` runs 10^5)."""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+import polars as pl
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import restitution as rs
+
+SCALE = int(os.environ.get("RESTITUTION_HYPOTHESIS_SCALE", "1"))
+
+
+def examples(n: int) -> settings:
+    return settings(max_examples=n * SCALE, deadline=None, derandomize=SCALE == 1,
+                    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+
+
+shapes = st.one_of(
+    st.just(rs.Disc(r=0.01)),
+    st.builds(rs.RegularPolygon, r=st.just(0.01), n=st.integers(3, 40), phi0_deg=st.floats(0.0, 360.0)),
+)
+
+scenes = st.builds(
+    rs.Scene,
+    shape=shapes,
+    mu=st.one_of(st.just(0.0), st.floats(0.0, 2.0), st.floats(10.0, 1e3)),
+    gamma=st.one_of(st.just(0.0), st.floats(0.0, 3.0)),
+    gamma_t=st.floats(0.0, 1.0),
+    E=st.one_of(st.just(1e7), st.floats(1e5, 1e9)),
+    # Slow grazing impacts of corners last very long (t_c / t_ref grows like v_n^(-1/3)): a
+    # triangle at 0.5 deg and 1 mm/s takes 2e8 Verlet steps to its time-out, 60 s. Kept out of
+    # this cheap suite; the extremes suites and the issue 7 report cover them.
+    v=st.floats(1e-2, 0.3),
+    integrator=st.sampled_from(["verlet", "gear5"]),
+    dt_factor=st.just(0.01),
+)
+
+
+def simulate_or_refuse(scene: rs.Scene, theta: float, omega: float) -> rs.Record | None:
+    """The record, or None where the scene is refused naming `v` (too deep) or `dt_factor`."""
+    try:
+        return rs.simulate(scene, theta_deg=theta, omega_in=omega)
+    except ValueError as err:
+        assert "`v`" in str(err) or "`dt_factor`" in str(err), str(err)
+        return None
+
+
+@examples(6000)
+@given(scene=scenes, theta=st.floats(5.0, 90.0), omega=st.floats(-50.0, 50.0))
+def test_random_scenes_keep_the_invariants(scene: rs.Scene, theta: float, omega: float) -> None:
+    rec = simulate_or_refuse(scene, theta, omega)
+    if rec is None:
+        return
+    values = [rec.e_n, rec.e_kin, rec.omega_out, rec.vx_out, rec.vy_out, rec.energy_out, rec.energy_residual]
+    assert all(math.isfinite(x) for x in values)
+    assert rec.e_t is None or math.isfinite(rec.e_t)
+    assert rec.separated and not rec.timed_out
+    if not (scene.mu == 0.0 and scene.gamma == 0.0 and not isinstance(scene.shape, rs.Disc)):
+        # Conservative polygons gain up to 4e-6 at the default step (an O(dt^2) error where the
+        # face or a corner meets the plate): a known failure, pinned as a strict xfail in
+        # tests/test_extremes.py::test_conservative_polygon_gains_no_energy_at_the_default_step.
+        assert rec.energy_out <= rec.energy_in * (1 + 1e-6)
+    assert abs(rec.energy_residual) < 1e-3
+    assert rec.work_friction <= 1e-6 * rec.energy_in
+    if isinstance(scene.shape, rs.Disc):
+        assert 0.0 < rec.e_n <= 1.0 + 1e-6
+    if scene.mu == 0.0:
+        # No tangential force: vx is untouched (Gear-5 keeps v dt, so its readback may differ
+        # from the input in the last bit).
+        assert rec.work_friction == 0.0
+        assert rec.e_t is None or abs(rec.e_t - 1.0) <= 1e-12
+
+
+@examples(200)
+@given(scene=scenes, theta=st.lists(st.floats(5.0, 90.0), min_size=1, max_size=8, unique=True))
+def test_sweep_rows_equal_single_impacts(scene: rs.Scene, theta: list[float]) -> None:
+    try:
+        df = rs.sweep(scene, theta_deg=theta)
+    except ValueError as err:
+        assert "`v`" in str(err) or "`dt_factor`" in str(err), str(err)
+        return
+    for row in df.iter_rows(named=True):
+        rec = rs.simulate(scene, theta_deg=row["theta_deg"])
+        assert rec.e_n == row["e_n"] and rec.omega_out == row["omega_out"]
+
+
+# -- fuzzing: bad input is a ValueError or TypeError, never anything else ------------------------
+
+
+
+def sane(x: float) -> bool:
+    """Not a finite magnitude that is valid but absurd. Those are left out on purpose (reported in
+    issue 7, to be refused at validation): theta_deg = 1e-10 or dt_factor = 1e-300 are accepted
+    and then run for hours (the step cap is 1e12), omega_in = 1e300 overflows the energies."""
+    return not math.isfinite(x) or x == 0.0 or 1e-3 <= abs(x) <= 1e3
+
+
+# Invalid values of every kind, and a few valid ones.
+junk = st.one_of(
+    st.sampled_from([math.nan, math.inf, -math.inf, -1.0, 0.0, -0.0, -1e-300, -1e308, 1.0, 0.5]),
+    st.floats(allow_nan=True, allow_infinity=True).filter(sane),
+    st.integers(-10**3, 64),
+    st.text(max_size=5),
+    st.none(),
+    st.booleans(),
+    st.lists(st.floats().filter(sane), max_size=3),
+    st.just(np.array([[1.0, 2.0]])),
+    st.just(np.array([math.nan])),
+    st.just(complex(1.0, 1.0)),
+    st.just(object()),
+)
+
+SCENE_FIELDS = ["rho", "E", "gamma", "gamma_t", "mu", "v", "integrator", "dt_factor", "normal_law", "kn", "cn",
+                "kt", "inertia", "shape"]
+
+
+@examples(1500)
+@given(field=st.sampled_from(SCENE_FIELDS), value=junk)
+def test_fuzz_scene_fields(field: str, value: object) -> None:
+    try:
+        scene = rs.Scene(**{field: value})
+    except (ValueError, TypeError):
+        return
+    # Accepted: then it must simulate or be refused cleanly.
+    simulate_or_refuse(scene, 45.0, 0.0)
+
+
+@examples(800)
+@given(field=st.sampled_from(["r", "n", "phi0_deg", "vertices"]), value=junk)
+def test_fuzz_shapes(field: str, value: object) -> None:
+    try:
+        if field == "vertices":
+            shape = rs.ConvexPolygon(vertices=value)  # type: ignore[arg-type]
+        elif field == "r":
+            shape = rs.Disc(r=value)  # type: ignore[arg-type]
+        else:
+            shape = rs.RegularPolygon(**{"r": 0.01, "n": 6, "phi0_deg": 0.0, field: value})  # type: ignore[arg-type]
+    except (ValueError, TypeError):
+        return
+    simulate_or_refuse(rs.Scene(shape=shape), 45.0, 0.0)
+
+
+@examples(1000)
+@given(theta=junk | st.floats(-1e3, 1e3).filter(sane), omega=junk | st.floats(-1e3, 1e3).filter(sane))
+def test_fuzz_simulate_arguments(theta: object, omega: object) -> None:
+    try:
+        rs.simulate(rs.Scene(), theta_deg=theta, omega_in=omega)  # type: ignore[arg-type]
+    except (ValueError, TypeError):
+        pass
+
+
+@examples(800)
+@given(axis=st.sampled_from(["theta_deg", "omega_in", "mu", "v", "E", "n", "phi0_deg", "dt_factor", "gamma",
+                             "integrator", "nonsense"]),
+       value=junk | st.lists(junk, max_size=3))
+def test_fuzz_sweep_axes(axis: str, value: object) -> None:
+    axes = {"theta_deg": [30.0, 60.0]}
+    axes[axis] = value  # type: ignore[assignment]
+    try:
+        rs.sweep(rs.Scene(integrator="verlet"), **axes)
+    except (ValueError, TypeError):
+        pass
+
+
+@examples(300)
+@given(column=st.sampled_from(["theta_deg", "mu", "v", "omega_in"]),
+       values=st.lists(st.floats(allow_nan=True, allow_infinity=True).filter(sane), min_size=1, max_size=4))
+def test_fuzz_cases_table(column: str, values: list[float]) -> None:
+    cases = pl.DataFrame({"theta_deg": [45.0] * len(values)})
+    cases = cases.with_columns(pl.Series(column, values, dtype=pl.Float64))
+    try:
+        df = rs.sweep(rs.Scene(integrator="verlet"), cases=cases)
+    except (ValueError, TypeError):
+        return
+    assert np.isfinite(df["e_n"].to_numpy()).all()
+
+
+def test_panics_never_escape() -> None:
+    # A pyo3 PanicException derives from BaseException: the fuzz tests above would not catch
+    # it, and it would fail them. Make sure the class exists where we think it does.
+    with pytest.raises((ValueError, TypeError)):
+        rs.simulate(rs.Scene(), theta_deg=float("nan"))
