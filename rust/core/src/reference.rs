@@ -599,12 +599,21 @@ impl<'a> Reference<'a> {
     /// Fraction of `step` at which event `ev` first fires (its function turns positive),
     /// given that it fires at the end. Secant and bisection alternate on the dense output.
     fn locate(&self, m: &Mode, ev: Event, step: &Step, g1: f64) -> f64 {
+        self.locate_in(m, ev, step, 0.0, 1.0, g1)
+    }
+
+    /// As [`Self::locate`], within [lo, hi] of the step, the event function positive at hi.
+    fn locate_in(&self, m: &Mode, ev: Event, step: &Step, lo: f64, hi: f64, g1: f64) -> f64 {
         let g = |th: f64| self.event_value(m, ev, &step.at(th));
-        let g0 = self.event_value(m, ev, &step.y0);
+        let g0 = if lo == 0.0 {
+            self.event_value(m, ev, &step.y0)
+        } else {
+            g(lo)
+        };
         if g0 > 0.0 {
-            return 0.0;
+            return lo;
         }
-        let (mut lo, mut hi, mut glo, mut ghi) = (0.0f64, 1.0f64, g0, g1);
+        let (mut lo, mut hi, mut glo, mut ghi) = (lo, hi, g0, g1);
         for it in 0..200 {
             if hi - lo <= 1e-14 {
                 break;
@@ -807,8 +816,19 @@ pub(crate) fn integrate(
                     continue;
                 }
                 let g1 = ode.event_value(&mode, ev, &step.y1);
-                if g1 > 0.0 {
-                    let th = ode.locate(&mode, ev, &step, g1);
+                let found = if g1 > 0.0 {
+                    Some(ode.locate(&mode, ev, &step, g1))
+                } else if matches!(ev, Event::EnterLeft | Event::EnterRight | Event::Touch) {
+                    // A corner may dip below the plate and rise again within one step (a
+                    // grazing corner beside the chord): look inside the step too.
+                    (1..8).map(|k| k as f64 / 8.0).find_map(|th| {
+                        let g = ode.event_value(&mode, ev, &step.at(th));
+                        (g > 0.0).then(|| ode.locate_in(&mode, ev, &step, th - 0.125, th, g))
+                    })
+                } else {
+                    None
+                };
+                if let Some(th) = found {
                     if first.is_none_or(|(t0, _)| th < t0) {
                         first = Some((th, ev));
                     }
