@@ -16,6 +16,10 @@ pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
 /// would act on round-off. 2^20 ulps keep the depth to ~1e-6 relative.
 pub const MIN_DEPTH_ULPS: f64 = 1_048_576.0;
 
+/// Most fixed steps an estimated contact may need (~10 s of one core): beyond it a scene is
+/// refused with the cure named rather than run for hours (a tiny dt_factor, a creeping contact).
+pub const MAX_STEPS_PER_CONTACT: f64 = 1e8;
+
 /// Where in the last step the depth crossed zero, by linear interpolation (0 when the two
 /// depths are equal, e.g. both exactly zero: never 0 / 0).
 #[inline]
@@ -213,6 +217,18 @@ fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Recor
         ));
     }
     let t_est = PI * depth_est / init.vy.abs();
+    let steps_per_contact = t_est / model.dt;
+    if scene.integrator != Integrator::Reference && steps_per_contact > MAX_STEPS_PER_CONTACT {
+        return Err(Error::invalid(
+            "dt_factor",
+            scene.dt_factor,
+            format!(
+                "large enough that a contact takes at most {MAX_STEPS_PER_CONTACT:e} steps (this \
+                 scene needs ~{steps_per_contact:.1e}: raise dt_factor, theta_deg or v, or use \
+                 integrator \"reference\")"
+            ),
+        ));
+    }
     let max_steps = (TIMEOUT_CONTACT_TIMES * t_est / model.dt).ceil().min(1e12) as u64 + 10;
     let q0 = [0.0, scene.shape.touch_height(init.phi0), init.phi0];
     let v0 = [init.vx, init.vy, init.omega];

@@ -79,6 +79,9 @@ impl Integrator {
     }
 }
 
+/// Largest rim speed |omega_in| r accepted (m/s).
+pub const MAX_RIM_SPEED: f64 = 1e6;
+
 /// Everything that defines an impact except the initial velocity and spin.
 ///
 /// `Scene::default()` is the study's preset on an exact disc (MODEL.md).
@@ -281,6 +284,17 @@ impl Model {
         finite("vy", init.vy)?;
         finite("omega_in", init.omega)?;
         finite("phi0", init.phi0)?;
+        // Beyond this rim speed no material holds together (wave speeds are ~1e3-1e4 m/s) and
+        // the kinetic energy of absurd spins would overflow: refuse instead of returning NaN.
+        ensure_param!(
+            init.omega.abs() * self.r <= MAX_RIM_SPEED,
+            "omega_in",
+            init.omega,
+            format!(
+                "with |omega_in| r <= {MAX_RIM_SPEED:e} m/s (r = {} m)",
+                self.r
+            )
+        );
         ensure_param!(
             init.vy < 0.0,
             "vy",
