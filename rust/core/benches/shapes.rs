@@ -126,7 +126,11 @@ fn summary() {
             per_overlap / d_overlap
         );
         if name == "120-gon half-plane" {
-            let verdict = if per_step <= 1000.0 { "meets" } else { "MISSES" };
+            let verdict = if per_step <= 1000.0 {
+                "meets"
+            } else {
+                "MISSES"
+            };
             println!("{:<20} {verdict} the <= 1 us per step target", "");
         }
     }

@@ -33,10 +33,10 @@ pub mod tangential;
 
 pub use error::{Error, Result};
 pub use geometry::{Overlap, OverlapMethod, Polygon, Shape};
-pub use obstacle::{ConvexObstacle, Patch};
 pub use impact::{
     estimate_max_depth, simulate, simulate_model, simulate_with_trace, Record, Trace,
 };
+pub use obstacle::{ConvexObstacle, Patch};
 pub use reference::{simulate_reference, simulate_reference_with_trace, ReferenceOptions};
 pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

@@ -26,9 +26,20 @@ fn finest_resolved_grazing_impacts_end_with_finite_physical_records() {
     for theta in [1e-2, 1e-4, 1e-6, 1e-7] {
         let rec = simulate(&paper_disc(), &Initial::from_angle(0.0357, theta, 0.0, 0.0)).unwrap();
         assert!(rec.separated && !rec.timed_out, "theta {theta}");
-        assert!(rec.contact_time.is_finite() && rec.contact_time > 0.0, "theta {theta}");
-        assert!(rec.e_n > last_e_n && rec.e_n < 1.0, "theta {theta}: e_n {}", rec.e_n);
-        assert!(rec.energy_residual.abs() < 1e-6, "theta {theta}: {}", rec.energy_residual);
+        assert!(
+            rec.contact_time.is_finite() && rec.contact_time > 0.0,
+            "theta {theta}"
+        );
+        assert!(
+            rec.e_n > last_e_n && rec.e_n < 1.0,
+            "theta {theta}: e_n {}",
+            rec.e_n
+        );
+        assert!(
+            rec.energy_residual.abs() < 1e-6,
+            "theta {theta}: {}",
+            rec.energy_residual
+        );
         last_e_n = rec.e_n;
     }
 }
