@@ -36,7 +36,9 @@ scenes = st.builds(
     rs.Scene,
     shape=shapes,
     mu=st.one_of(st.just(0.0), st.floats(0.0, 2.0), st.floats(10.0, 1e3)),
-    gamma=st.one_of(st.just(0.0), st.floats(0.0, 3.0)),
+    # Damping below 1e-2 behaves like none: on a polygon it meets the known, pinned O(dt^2) gain
+    # of conservative face-first impacts (see the test below), so it is drawn as exactly 0.
+    gamma=st.one_of(st.just(0.0), st.floats(1e-2, 3.0)),
     gamma_t=st.floats(0.0, 1.0),
     E=st.one_of(st.just(1e7), st.floats(1e5, 1e9)),
     # Slow grazing impacts of corners last very long (t_c / t_ref grows like v_n^(-1/3)): a
@@ -44,8 +46,10 @@ scenes = st.builds(
     # this cheap suite; the extremes suites and the issue 7 report cover them.
     v=st.floats(1e-2, 0.3),
     integrator=st.sampled_from(["verlet", "gear5"]),
-    dt_factor=st.just(0.01),
-)
+    # Built with a small step, then given the default 0.01 or the scene's own stability bound
+    # where strong damping makes that smaller (a larger step is refused at construction).
+    dt_factor=st.just(1e-6),
+).map(lambda scene: scene.replace(dt_factor=min(0.01, scene.max_dt_factor)))
 
 
 def simulate_or_refuse(scene: rs.Scene, theta: float, omega: float) -> rs.Record | None:
