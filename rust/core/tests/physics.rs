@@ -7,6 +7,8 @@
 //! code's own output. Run with `cargo test -p restitution-core --release --test physics --
 //! --nocapture` to see the measured orders and agreements.
 
+mod common;
+
 use restitution_core::{
     estimate_max_depth, simulate, simulate_with_trace, Error, InertiaModel, Initial, Integrator,
     Model, NormalLaw, Record, Scene, Shape,
@@ -1083,19 +1085,8 @@ fn unstable(scene: &Scene, init: &Initial) -> Option<String> {
     if !finite || !rec.separated || rec.timed_out {
         return Some(format!("not finite or not separated: {rec:?}"));
     }
-    let damped = match scene.normal_law {
-        NormalLaw::Area => scene.gamma > 0.0,
-        NormalLaw::Linear { cn, .. } => cn > 0.0,
-    };
-    let gain = rec.energy_out / rec.energy_in - 1.0;
-    if (damped || scene.mu > 0.0) && gain > 1e-6 {
-        return Some(format!("energy gained: {gain:e}"));
-    }
-    if !(damped || scene.mu > 0.0) && gain.abs() > 1e-2 {
-        return Some(format!("energy changed by {gain:e}"));
-    }
-    if rec.energy_residual.abs() > 1e-2 {
-        return Some(format!("energy residual {:e}", rec.energy_residual));
+    if let Some(reason) = common::energy_verdict(scene, &rec) {
+        return Some(reason);
     }
     let v = init.vx.hypot(init.vy);
     let dv = [

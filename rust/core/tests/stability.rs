@@ -18,6 +18,8 @@
 //! `cargo test -p restitution-core --release --test stability -- --ignored --nocapture
 //! measure` repeats the measurement (env SCAN="a|b" filters scenes by name, START, STEP, STOP
 //! set the scan of h, INTEG=gear5|verlet).
+mod common;
+
 use restitution_core::*;
 
 const V: f64 = 0.0357;
@@ -74,19 +76,8 @@ fn unstable(scene: &Scene, init: &Initial, h: f64, halving: bool) -> Option<Stri
             rec.timed_out, half.timed_out
         ));
     }
-    let damped = match scene.normal_law {
-        NormalLaw::Area => scene.gamma > 0.0,
-        NormalLaw::Linear { cn, .. } => cn > 0.0,
-    };
-    let gain = rec.energy_out / rec.energy_in - 1.0;
-    if (damped || scene.mu > 0.0) && gain > 1e-6 {
-        return Some(format!("energy gained: {gain:e}"));
-    }
-    if !(damped || scene.mu > 0.0) && gain.abs() > 1e-2 {
-        return Some(format!("energy changed by {gain:e}"));
-    }
-    if rec.energy_residual.abs() > 1e-2 {
-        return Some(format!("energy residual {:e}", rec.energy_residual));
+    if let Some(reason) = common::energy_verdict(scene, &rec) {
+        return Some(reason);
     }
     let v = init.vx.hypot(init.vy);
     let dv = [
