@@ -113,24 +113,45 @@ def test_sweep_over_the_extremes_is_finite() -> None:
     assert df["e_t"].drop_nulls().is_finite().all()
 
 
-@pytest.mark.xfail(strict=True, reason="known (issue 7 report): Verlet and Gear-5 gain 1.2e-6 and 1.5e-6 of the "
-                   "energy at the default step on an elastic 30-gon landing face-first; O(dt^2), the reference gains 1e-12")
 @pytest.mark.parametrize("integrator", ["verlet", "gear5"])
-def test_conservative_polygon_gains_no_energy_at_the_default_step(integrator: str) -> None:
+@pytest.mark.parametrize("theta_deg", [30.0, 80.0, 90.0])
+def test_conservative_polygon_conserves_energy_at_the_default_step(integrator: str, theta_deg: float) -> None:
+    # Face first (phi0 = 0 puts an edge of the 30-gon at the bottom): both fixed-step
+    # integrators gained 1.2e-6 / 1.5e-6 here before touch and separation were located.
     scene = rs.Scene(shape=rs.RegularPolygon(r=0.01, n=30, phi0_deg=0.0), gamma=0.0, mu=0.0, integrator=integrator)
-    rec = rs.simulate(scene, theta_deg=80.0)
+    rec = rs.simulate(scene, theta_deg=theta_deg)
+    assert abs(rec.energy_out / rec.energy_in - 1) < 1e-7
+
+
+@pytest.mark.xfail(strict=True, reason="known: frictional contacts keep plain fixed steps (events are located only "
+                   "without friction), so a face-first square with negligible friction and no damping gains ~1e-5")
+def test_face_first_square_with_negligible_friction_gains_no_energy() -> None:
+    scene = rs.Scene(shape=rs.RegularPolygon(r=0.01, n=4, phi0_deg=45.0), gamma=0.0, gamma_t=0.0, mu=1e-9)
+    rec = rs.simulate(scene, theta_deg=60.0)
     assert rec.energy_out <= rec.energy_in * (1 + 1e-6)
 
 
-def test_conservative_polygon_energy_error_is_a_step_error() -> None:
-    # The gain above shrinks like dt^2 and vanishes with the reference integrator.
-    shape = rs.RegularPolygon(r=0.01, n=30, phi0_deg=0.0)
-    gains = [rs.simulate(rs.Scene(shape=shape, gamma=0.0, mu=0.0, integrator="verlet", dt_factor=dt), theta_deg=80.0)
+@pytest.mark.xfail(strict=True, reason="known: Verlet's own O(dt^2) energy error on a spinning polygon, 5.3e-6 "
+                   "at the default step (Gear-5, the default, conserves it to 1e-8)")
+def test_verlet_spinning_square_gains_no_energy_at_the_default_step() -> None:
+    scene = rs.Scene(shape=rs.RegularPolygon(r=0.01, n=4, phi0_deg=45.0), gamma=0.0, mu=0.0, integrator="verlet")
+    rec = rs.simulate(scene, theta_deg=90.0, omega_in=3.0)
+    assert rec.energy_out <= rec.energy_in * (1 + 1e-6)
+
+
+def test_verlet_energy_error_on_a_spinning_polygon_is_a_step_error() -> None:
+    # Verlet's own error: a spinning square landing face first loses a corner mid-contact, where
+    # the stiffness (and Verlet's modified energy) jumps. It shrinks like dt^2; Gear-5 and the
+    # reference conserve energy there.
+    shape = rs.RegularPolygon(r=0.01, n=4, phi0_deg=45.0)
+    scene = rs.Scene(shape=shape, gamma=0.0, mu=0.0)
+    gains = [rs.simulate(scene.replace(integrator="verlet", dt_factor=dt), theta_deg=90.0, omega_in=3.0)
              for dt in (0.01, 0.005)]
     g = [r.energy_out / r.energy_in - 1 for r in gains]
-    assert g[1] < g[0] / 3
-    ref = rs.simulate(rs.Scene(shape=shape, gamma=0.0, mu=0.0, integrator="reference", dt_factor=1.0), theta_deg=80.0)
-    assert abs(ref.energy_out / ref.energy_in - 1) < 1e-10
+    assert 3.5 < g[0] / g[1] < 4.5
+    for integrator in ("gear5", "reference"):
+        rec = rs.simulate(scene.replace(integrator=integrator), theta_deg=90.0, omega_in=3.0)
+        assert abs(rec.energy_out / rec.energy_in - 1) < 1e-7
 
 
 @pytest.mark.parametrize("omega_in", [1e300, -1e9])

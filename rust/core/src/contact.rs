@@ -52,11 +52,23 @@ impl Forces {
 /// One implementation per kind of shape, so that the integration loop is compiled for each:
 /// the exact disc's loop then has no shape dispatch, and its zero lever arms (the centroid and
 /// the chord midpoint lie on the vertical through the centre) fold away.
-pub trait PlateGeometry {
+pub trait PlateGeometry: Clone {
+    /// Whether the contact law has events inside a contact that the fixed-step integrators
+    /// should locate (a polygon's corners crossing the plate). The exact disc has none: its
+    /// loop is compiled without any of the event handling.
+    const EVENTS: bool;
     /// Overlap for a centre of mass at height `y` and orientation `phi`; `None` when clear.
     fn overlap(&self, y: f64, phi: f64) -> Option<Overlap>;
     /// Signed depth of the lowest point below the plate (negative when clear).
     fn depth(&self, y: f64, phi: f64) -> f64;
+    /// Number of corners (0 for a disc).
+    fn corner_count(&self) -> usize {
+        0
+    }
+    /// World height of corner `k` for the centre of mass at height `y`, orientation `phi`.
+    fn corner_height(&self, _k: usize, _y: f64, _phi: f64) -> f64 {
+        f64::NAN
+    }
 }
 
 /// The exact disc of radius `r`: closed-form circular segment.
@@ -67,6 +79,8 @@ pub struct DiscPlate {
 }
 
 impl PlateGeometry for DiscPlate {
+    const EVENTS: bool = false;
+
     #[inline(always)]
     fn overlap(&self, y: f64, _phi: f64) -> Option<Overlap> {
         disc_segment(self.r, y)
@@ -88,6 +102,19 @@ pub struct ShapePlate<'a> {
 }
 
 impl PlateGeometry for ShapePlate<'_> {
+    const EVENTS: bool = true;
+
+    fn corner_count(&self) -> usize {
+        self.shape.vertices().len()
+    }
+
+    fn corner_height(&self, k: usize, y: f64, phi: f64) -> f64 {
+        match self.shape {
+            Shape::Polygon(p) => p.vertex_height(k, y, phi),
+            Shape::Disc { .. } => f64::NAN,
+        }
+    }
+
     #[inline(always)]
     fn overlap(&self, y: f64, phi: f64) -> Option<Overlap> {
         self.shape.overlap_with(self.method, y, phi)

@@ -60,6 +60,28 @@ pub struct Overlap {
     /// First moment of the overlap about y = 0: integral of (-y) dA (m^3). The elastic
     /// potential of the area law is (E / L) times this.
     pub first_moment: f64,
+    /// Which of a polygon's vertices lie at or below the plate (all zero for a disc). The
+    /// contact law is smooth while this stays the same; a change marks an event (a touch, a
+    /// separation, a corner crossing the plate) that the fixed-step integrators locate.
+    pub corners: Corners,
+}
+
+/// The chain of a polygon's vertices at or below the plate: the first of them in
+/// counter-clockwise order and how many there are (below the plate they are contiguous).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Corners {
+    /// Index of the first vertex of the chain.
+    pub first: u32,
+    /// Number of vertices in the chain.
+    pub count: u32,
+}
+
+impl Corners {
+    /// Whether vertex `k` of an `n`-gon belongs to the chain.
+    #[inline]
+    pub fn contains(&self, k: usize, n: usize) -> bool {
+        (k + n - self.first as usize) % n < self.count as usize
+    }
 }
 
 /// Which algorithm computes a particle's overlap with the flat plate.
@@ -292,6 +314,7 @@ pub(crate) fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
         depth,
         x_low: 0.0,
         first_moment: -area * cy,
+        corners: Corners::default(),
     })
 }
 
@@ -322,6 +345,7 @@ fn disc_segment_closed(r: f64, y: f64) -> Option<Overlap> {
         depth,
         x_low: 0.0,
         first_moment: -area * cy,
+        corners: Corners::default(),
     })
 }
 
@@ -461,15 +485,8 @@ impl Polygon {
         if depth <= 0.0 {
             return None;
         }
-        // Back to the first vertex of the chain below (or on) the plate.
-        let mut first = k;
-        for _ in 1..n {
-            let prev = if first == 0 { n - 1 } else { first - 1 };
-            if world(&self.vertices[prev]).1 > 0.0 {
-                break;
-            }
-            first = prev;
-        }
+        let first = self.chain_start(k, &world);
+        let mut count = 0u32;
         let mut acc = ShoelaceAcc::default();
         let mut p = world(&self.vertices[if first == 0 { n - 1 } else { first - 1 }]);
         let mut i = first;
@@ -483,6 +500,7 @@ impl Polygon {
                 break;
             }
             acc.push(q);
+            count += 1;
             p = q;
             i = if i + 1 == n { 0 } else { i + 1 };
         }
@@ -504,7 +522,53 @@ impl Polygon {
             depth,
             x_low,
             first_moment: -area * cy,
+            corners: Corners {
+                first: first as u32,
+                count,
+            },
         })
+    }
+
+    /// From the lowest vertex `low` (at or below the plate), back to the first vertex of the
+    /// chain at or below the plate; `world` places a body-frame vertex as (x, y).
+    #[inline]
+    fn chain_start(&self, low: usize, world: &impl Fn(&Vector2<f64>) -> (f64, f64)) -> usize {
+        let n = self.vertices.len();
+        let mut first = low;
+        for _ in 1..n {
+            let prev = if first == 0 { n - 1 } else { first - 1 };
+            if world(&self.vertices[prev]).1 > 0.0 {
+                break;
+            }
+            first = prev;
+        }
+        first
+    }
+
+    /// The chain of vertices at or below the plate for the centroid at (0, `y`) and
+    /// orientation (sin, cos) = (`s`, `c`), given its lowest vertex `low` (at or below).
+    pub(crate) fn corners_below(&self, y: f64, s: f64, c: f64, low: usize) -> Corners {
+        let world = |v: &Vector2<f64>| (c * v.x - s * v.y, y + s * v.x + c * v.y);
+        let n = self.vertices.len();
+        let first = self.chain_start(low, &world);
+        let mut count = 0u32;
+        let mut i = first;
+        while (count as usize) < n && world(&self.vertices[i]).1 <= 0.0 {
+            count += 1;
+            i = if i + 1 == n { 0 } else { i + 1 };
+        }
+        Corners {
+            first: first as u32,
+            count,
+        }
+    }
+
+    /// World height of vertex `k` for the centroid at height `y` and orientation `phi`.
+    #[inline]
+    pub fn vertex_height(&self, k: usize, y: f64, phi: f64) -> f64 {
+        let (s, c) = phi.sin_cos();
+        let v = &self.vertices[k];
+        y + s * v.x + c * v.y
     }
 }
 

@@ -16,7 +16,17 @@ const GEAR5_CORRECTOR: [f64; 6] = [
 ];
 
 /// A fixed-step integrator over (x, y, phi).
-pub trait Stepper {
+///
+/// Besides the fixed step, a stepper can shorten one step and restart on a new branch of the
+/// contact law: [`crate::events`] uses this to land a step exactly on a touch, a separation or a
+/// corner crossing of a polygon (where the force is not smooth) and to go on from there with
+/// the new branch's acceleration and jerk instead of extrapolating the old branch.
+pub trait Stepper: Clone {
+    /// Whether the works of the forces need a quadrature of higher order than the trapezoid
+    /// when the integrator restarts at events (Gear-5: its energy is then accurate to far
+    /// below the trapezoid's error). Verlet's velocity update is itself a trapezoid of the
+    /// forces, so the trapezoid closes its energy balance.
+    const HIGH_ORDER: bool;
     /// Advances one step of `dt`, returning the forces used.
     fn step<G: PlateGeometry>(
         &mut self,
@@ -28,6 +38,21 @@ pub trait Stepper {
     fn position(&self) -> Dof;
     /// Current velocity.
     fn velocity(&self) -> Dof;
+    /// Current step size.
+    fn dt(&self) -> f64;
+    /// Position at fraction `s` (0..1) of the coming step, along the integrator's own
+    /// prediction (the polynomial it would evaluate the force on).
+    fn path(&self, s: f64) -> Dof;
+    /// Acceleration the integrator currently carries.
+    fn acceleration(&self) -> Dof;
+    /// Continues the same local solution with step `h` instead.
+    fn resize(&mut self, h: f64);
+    /// Restarts from the current position and velocity on a new branch of the force law, with
+    /// its acceleration `a` and jerk `jerk` (higher derivatives zero), and step `h`.
+    fn restart(&mut self, a: &Dof, jerk: &Dof, h: f64);
+    /// Estimate of the last step's local error in position (x, y, phi), or `None` when the
+    /// integrator has no estimate (its step is then never refined).
+    fn local_error(&self) -> Option<Dof>;
 }
 
 /// Gear 5th-order predictor-corrector: per degree of freedom the scaled Taylor terms
@@ -61,6 +86,9 @@ pub struct Gear5 {
     /// evaluation's critical path).
     inv_dt: f64,
     half_dt2: f64,
+    /// The last corrector increment: the predicted minus the evaluated acceleration, times
+    /// dt^2 / 2. Gear's local error is proportional to it (a position).
+    delta: Lanes,
 }
 
 /// x, y, phi and a padding lane (kept at zero).
@@ -93,30 +121,71 @@ fn pascal(g: &mut [Lanes; 6]) {
     }
 }
 
+/// The inverse of [`pascal`]: the Taylor shift back by one step.
+fn unpascal(g: &mut [Lanes; 6]) {
+    for lo in 0..5 {
+        for k in (lo..5).rev() {
+            for i in 0..4 {
+                g[k][i] -= g[k + 1][i];
+            }
+        }
+    }
+}
+
 impl Gear5 {
     /// Starts at rest in acceleration (at first touch there is no force).
     pub fn new(q: Dof, v: Dof, dt: f64) -> Self {
-        let mut gp = [[0.0; 4]; 6];
+        let mut g = [[0.0; 4]; 6];
         for i in 0..3 {
-            gp[0][i] = q[i];
-            gp[1][i] = v[i] * dt;
+            g[0][i] = q[i];
         }
-        let (q, v_dt) = (gp[0], gp[1]);
+        Self::from_terms(g, [v[0], v[1], v[2], 0.0], dt)
+    }
+
+    /// From the scaled Taylor terms `g` for step `dt` (row 1 is replaced by `v dt`, so that the
+    /// velocity is read back as exactly `v` while no force acts).
+    fn from_terms(mut g: [Lanes; 6], v: Lanes, dt: f64) -> Self {
+        for i in 0..4 {
+            g[1][i] = v[i] * dt;
+        }
+        let (q, v_dt) = (g[0], g[1]);
+        let mut gp = g;
         pascal(&mut gp);
         Gear5 {
             gp,
             q,
             v_dt,
-            v0: [v[0], v[1], v[2], 0.0],
+            v0: v,
             v0_dt: v_dt,
             dt,
             inv_dt: 1.0 / dt,
             half_dt2: 0.5 * dt * dt,
+            delta: [0.0; 4],
         }
+    }
+
+    /// The corrected scaled Taylor terms at the current time (the stored prediction shifted
+    /// back; rows 0 and 1 as stored).
+    fn terms(&self) -> [Lanes; 6] {
+        let mut g = self.gp;
+        unpascal(&mut g);
+        g[0] = self.q;
+        g[1] = self.v_dt;
+        g
+    }
+
+    fn velocity_lanes(&self) -> Lanes {
+        let mut v = [0.0; 4];
+        for i in 0..4 {
+            v[i] = self.v0[i] + (self.v_dt[i] - self.v0_dt[i]) * self.inv_dt;
+        }
+        v
     }
 }
 
 impl Stepper for Gear5 {
+    const HIGH_ORDER: bool = true;
+
     #[inline(always)]
     fn step<G: PlateGeometry>(
         &mut self,
@@ -151,6 +220,7 @@ impl Stepper for Gear5 {
             }
         }
         self.gp = next;
+        self.delta = delta;
         f
     }
 
@@ -163,6 +233,65 @@ impl Stepper for Gear5 {
     fn velocity(&self) -> Dof {
         let v = |i: usize| self.v0[i] + (self.v_dt[i] - self.v0_dt[i]) * self.inv_dt;
         [v(0), v(1), v(2)]
+    }
+
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    fn path(&self, s: f64) -> Dof {
+        let g = self.terms();
+        std::array::from_fn(|i| {
+            let mut p = g[5][i];
+            for k in (0..5).rev() {
+                p = p * s + g[k][i];
+            }
+            p
+        })
+    }
+
+    fn acceleration(&self) -> Dof {
+        let g = self.terms();
+        let scale = 2.0 / (self.dt * self.dt);
+        [g[2][0] * scale, g[2][1] * scale, g[2][2] * scale]
+    }
+
+    fn resize(&mut self, h: f64) {
+        let mut g = self.terms();
+        let ratio = h / self.dt;
+        let mut scale = ratio;
+        for row in g.iter_mut().skip(2) {
+            scale *= ratio;
+            for x in row.iter_mut() {
+                *x *= scale;
+            }
+        }
+        if ratio > 1.0 {
+            // Longer steps magnify what the short ones left in the highest terms (by 2^4 and
+            // 2^5 when doubling). Along x and phi that is the tangential force's stick/slip
+            // noise, which then disturbs the energy balance: those terms are rebuilt by the
+            // corrector instead. (The height's are kept: the error control watches it.)
+            for row in &mut g[4..] {
+                row[0] = 0.0;
+                row[2] = 0.0;
+            }
+        }
+        *self = Self::from_terms(g, self.velocity_lanes(), h);
+    }
+
+    fn restart(&mut self, a: &Dof, jerk: &Dof, h: f64) {
+        let mut g = [[0.0; 4]; 6];
+        let (a_scale, j_scale) = (0.5 * h * h, h * h * h / 6.0);
+        for i in 0..3 {
+            g[0][i] = self.q[i];
+            g[2][i] = a[i] * a_scale;
+            g[3][i] = jerk[i] * j_scale;
+        }
+        *self = Self::from_terms(g, self.velocity_lanes(), h);
+    }
+
+    fn local_error(&self) -> Option<Dof> {
+        Some([self.delta[0], self.delta[1], self.delta[2]])
     }
 }
 
@@ -210,6 +339,8 @@ impl Verlet {
 }
 
 impl Stepper for Verlet {
+    const HIGH_ORDER: bool = false;
+
     #[inline(always)]
     fn step<G: PlateGeometry>(
         &mut self,
@@ -244,5 +375,35 @@ impl Stepper for Verlet {
     #[inline(always)]
     fn velocity(&self) -> Dof {
         [self.v[0], self.v[1], self.v[2]]
+    }
+
+    fn dt(&self) -> f64 {
+        self.dt
+    }
+
+    fn path(&self, s: f64) -> Dof {
+        let t = s * self.dt;
+        std::array::from_fn(|i| self.q[i] + self.v[i] * t + self.a[i] * (0.5 * t * t))
+    }
+
+    fn acceleration(&self) -> Dof {
+        [self.a[0], self.a[1], self.a[2]]
+    }
+
+    fn resize(&mut self, h: f64) {
+        for i in 0..4 {
+            self.q_next[i] = self.q[i] + self.v[i] * h + self.a[i] * (0.5 * h * h);
+            self.v_pred[i] = self.v[i] + self.a[i] * h;
+        }
+        self.dt = h;
+    }
+
+    fn restart(&mut self, a: &Dof, _jerk: &Dof, h: f64) {
+        self.a = [a[0], a[1], a[2], 0.0];
+        self.resize(h);
+    }
+
+    fn local_error(&self) -> Option<Dof> {
+        None
     }
 }

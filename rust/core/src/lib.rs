@@ -21,6 +21,7 @@
 
 pub mod contact;
 pub mod error;
+pub mod events;
 pub mod geometry;
 pub mod impact;
 pub mod integrate;
@@ -32,7 +33,7 @@ pub mod sweep;
 pub mod tangential;
 
 pub use error::{Error, Result};
-pub use geometry::{Overlap, OverlapMethod, Polygon, Shape};
+pub use geometry::{Corners, Overlap, OverlapMethod, Polygon, Shape};
 pub use impact::{
     estimate_max_depth, simulate, simulate_model, simulate_with_trace, Record, Trace,
 };

@@ -156,7 +156,8 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
         // The same expressions and lowest vertex as the half-plane path, then an exact
         // scaling.
         let place = |v: &nalgebra::Vector2<f64>| (c * v.x - s * v.y, y + s * v.x + c * v.y);
-        let (x_low, low) = place(&particle.vertices()[particle.lowest_vertex(s, c)]);
+        let k_low = particle.lowest_vertex(s, c);
+        let (x_low, low) = place(&particle.vertices()[k_low]);
         let depth = -low;
         if depth <= 0.0 {
             return None;
@@ -178,6 +179,7 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
             V::new(-2.0, 0.0),
         ]);
         let inv = 1.0 / scale;
+        let corners = particle.corners_below(y, s, c, k_low);
         let Some(p) = intersect(world, obstacle, out) else {
             // Parry found no area although a vertex is below the plate: a sliver below the
             // resolution of its predicates. Report it as a zero-area touch at the lowest point.
@@ -190,6 +192,7 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
                 depth,
                 x_low,
                 first_moment: 0.0,
+                corners,
             });
         };
         let (chord, x_mid) = match p.chord {
@@ -207,6 +210,7 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
             depth,
             x_low,
             first_moment: -area * cy,
+            corners,
         })
     })
 }

@@ -347,6 +347,10 @@ impl<'a> Reference<'a> {
             depth,
             x_low: lowc.0,
             first_moment: -area * cy,
+            corners: crate::geometry::Corners {
+                first: first as u32,
+                count: len as u32,
+            },
         }
     }
 

@@ -19,6 +19,14 @@ fn gon(n: usize) -> Scene {
     }
 }
 
+/// Step of the n-gon -> disc comparison without friction. Frictionless polygons are integrated
+/// more accurately than the disc (touch and separation located, refined steps), so at the
+/// default step the exact disc's own integration error (|de_N| ~ 1e-6) would hide the
+/// geometric difference beyond n ~ 1920; at a fifth of it the disc's is ~1e-7. With friction
+/// both take the same plain fixed steps at the default dt, whose errors (stick/slip, order 1)
+/// then largely cancel in the difference.
+const FRICTIONLESS_DT_FACTOR: f64 = 0.002;
+
 /// The paper sweep, thinned: theta from 4 to 89 degrees, mu from 0 to 1, no spin, phi0 = 0.
 /// Debug builds run a smaller subset (the 4096-gon is slow unoptimised); CI runs --release.
 fn sweep_cases(shape: &Shape) -> Vec<Case> {
@@ -37,6 +45,11 @@ fn sweep_cases(shape: &Shape) -> Vec<Case> {
                 scene: Scene {
                     shape: shape.clone(),
                     mu,
+                    dt_factor: if mu == 0.0 {
+                        FRICTIONLESS_DT_FACTOR
+                    } else {
+                        Scene::default().dt_factor
+                    },
                     ..Scene::default()
                 },
                 init: Initial::from_angle(V, theta, 0.0, 0.0),
@@ -333,36 +346,36 @@ fn elastic_energy_error(integrator: Integrator, dt_factor: f64, n: usize, phis: 
 
 #[test]
 fn fixed_step_energy_error_without_friction_and_damping() {
-    // Corner first the force grows like depth^2 and the fixed-step integrators conserve
-    // energy well below 1e-6 at the default dt. Face first it grows linearly from touch and
-    // drops linearly to zero inside the last step: two kinks that cost a first-order local
-    // error, so the energy error is O(dt^2) and must shrink accordingly.
-    for integrator in [Integrator::Gear5, Integrator::Verlet] {
-        for (n, corner, face) in [(4usize, 0.0, 45.0), (3, 30.0, 90.0)] {
-            let c = elastic_energy_error(integrator, 0.01, n, &[corner, corner + 7.0]);
-            assert!(c < 1e-6, "{integrator:?} {n}-gon corner first: {c:e}");
-            let coarse = elastic_energy_error(integrator, 0.01, n, &[face]);
-            let fine = elastic_energy_error(integrator, 0.0025, n, &[face]);
-            let order = (coarse / fine).ln() / 4f64.ln();
-            println!(
-                "{integrator:?} {n}-gon: corner first {c:.1e}; face first {coarse:.1e} at dt_factor 0.01, {fine:.1e} at 0.0025 (order {order:.2})"
-            );
-            assert!(
-                order > 1.5,
-                "{integrator:?} {n}-gon face first: order {order:.2}"
-            );
-        }
+    // Gear-5 (the default) conserves energy to ~1e-8 at the default dt, corner or face first:
+    // touch and separation are located inside the step and the integrator restarts there on
+    // the new branch (face first the force grows linearly from touch), and steps in which the
+    // force changes faster than they resolve (a sliver left when an edge lifts off) are
+    // refined. Verlet's energy error is its own O(dt^2) one (a symplectic method conserves a
+    // modified energy, which jumps where the polygon's stiffness does, when a corner crosses
+    // the plate): it must shrink like dt^2.
+    for (n, corner, face) in [(4usize, 0.0, 45.0), (3, 30.0, 90.0)] {
+        let phis = [corner, corner + 7.0, face, face + 1.0];
+        let g = elastic_energy_error(Integrator::Gear5, 0.01, n, &phis);
+        println!("Gear5 {n}-gon: |dE|/E <= {g:.1e} at the default dt_factor 0.01");
+        assert!(g < 1e-7, "Gear5 {n}-gon: {g:e}");
+        let coarse = elastic_energy_error(Integrator::Verlet, 0.01, n, &[face]);
+        let fine = elastic_energy_error(Integrator::Verlet, 0.0025, n, &[face]);
+        let order = (coarse / fine).ln() / 4f64.ln();
+        let c = elastic_energy_error(Integrator::Verlet, 0.01, n, &[corner, corner + 7.0]);
+        println!(
+            "Verlet {n}-gon: corner first {c:.1e}; face first {coarse:.1e} at dt_factor 0.01, {fine:.1e} at 0.0025 (order {order:.2})"
+        );
+        assert!(order > 1.8, "Verlet {n}-gon face first: order {order:.2}");
     }
 }
 
 #[test]
-#[ignore = "known failure: face-first elastic squares/triangles gain up to 1.1e-5 (Gear-5 and Verlet) \
-            at the default dt; the fix is locating touch/separation inside the step (integrate.rs)"]
 fn face_first_elastic_impacts_conserve_energy_at_the_default_dt() {
     // MODEL.md: mu = 0 and gamma = 0 conserve energy for any polygon and orientation, and no
-    // impact gains more than 1e-6 at the default dt.
+    // impact gains more than 1e-6 at the default dt (Gear-5 gained up to 1.1e-5 here before
+    // touch and separation were located inside the step).
     for (n, face) in [(4usize, 45.0), (3, 90.0)] {
         let e = elastic_energy_error(Integrator::Gear5, 0.01, n, &[face, face + 1.0]);
-        assert!(e < 1e-6, "{n}-gon face first: |dE|/E {e:.2e}");
+        assert!(e < 1e-7, "{n}-gon face first: |dE|/E {e:.2e}");
     }
 }
