@@ -9,11 +9,13 @@
 //! and triangles at the default step), and Gear-5's higher Taylor terms keep extrapolating the
 //! old branch for several steps after it.
 //!
-//! So the loop locates the first corner crossing inside a step along the integrator's own
-//! predicted path, shortens that step to end on it, and restarts the integrator there with the
-//! acceleration and jerk of the new branch, measured by two short one-sided peeks along the
-//! path. Between events the integrators are untouched; the exact disc has no events and its
-//! loop is compiled without any of this.
+//! So, for contacts without friction, the loop locates a touch or a separation inside a step
+//! along the integrator's own predicted path, shortens that step to end on it, and restarts the
+//! integrator there with the acceleration and jerk of the new branch, measured by two short
+//! one-sided peeks along the path; and Gear-5 halves the steps whose local error in height is
+//! too large (a sliver of overlap left when an edge lifts off at a glancing angle). Between
+//! events the integrators are untouched; the exact disc has no events and its loop is compiled
+//! without any of this.
 
 use crate::contact::{Contact, Dof, Forces, PlateGeometry};
 use crate::geometry::{Corners, Overlap};

@@ -76,14 +76,6 @@ pub struct Corners {
     pub count: u32,
 }
 
-impl Corners {
-    /// Whether vertex `k` of an `n`-gon belongs to the chain.
-    #[inline]
-    pub fn contains(&self, k: usize, n: usize) -> bool {
-        (k + n - self.first as usize) % n < self.count as usize
-    }
-}
-
 /// Which algorithm computes a particle's overlap with the flat plate.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum OverlapMethod {
