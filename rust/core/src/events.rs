@@ -194,10 +194,8 @@ pub struct EventControl {
     pub h: f64,
     /// Nominal step (s).
     pub dt: f64,
-    /// Largest accepted local error in the centre's height (m). Only the height is
-    /// controlled: it is driven by the normal force alone, whereas the tangential force's
-    /// stick/slip switches (which the disc's fixed steps do not refine either) would otherwise
-    /// shorten the steps of every frictional contact.
+    /// Largest accepted local error in the centre's height (m): the height is driven by the
+    /// normal force alone, whose fast changes are what needs finer steps.
     pub tolerance: f64,
 }
 

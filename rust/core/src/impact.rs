@@ -399,8 +399,7 @@ fn integrate_on<S: Stepper, G: PlateGeometry>(
     let mut steps = 0u64;
     let (mut in_contact, mut contact_start, mut prev_depth) = (true, 0.0, 0.0);
     // Polygons: steps located on events and refined where the force changes within a step
-    // (see `events`).
-    // Only without friction: with it the stick/slip switches bound the fixed-step integrators
+    // (see `events`), only without friction: with it the stick/slip switches bound the fixed-step integrators
     // to first order anyway (MODEL.md), and the restarts and refined steps measured no better
     // e_n while they disturbed the energy balance of frictional spinning polygons (its
     // residual rose from ~1e-7 to ~2e-6 at the default step), so those keep the plain steps.
@@ -450,8 +449,7 @@ fn integrate_on<S: Stepper, G: PlateGeometry>(
         if events && S::HIGH_ORDER {
             // The normal power kinks where the force is clipped to zero or released: a parabola
             // through both sides would be worse than the trapezoid, so a new stretch starts
-            // there. (Stick/slip switches are left inside the stretches: with micro-slip they
-            // come every few steps, and restarting at each measured worse.)
+            // there.
             let pushing = f.f_el + f.f_d > 0.0;
             if pushing == was_pushing {
                 w_n.push(h, p_el + p_d);

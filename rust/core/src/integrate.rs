@@ -38,8 +38,6 @@ pub trait Stepper: Clone {
     fn position(&self) -> Dof;
     /// Current velocity.
     fn velocity(&self) -> Dof;
-    /// Current step size.
-    fn dt(&self) -> f64;
     /// Position at fraction `s` (0..1) of the coming step, along the integrator's own
     /// prediction (the polynomial it would evaluate the force on).
     fn path(&self, s: f64) -> Dof;
@@ -174,6 +172,7 @@ impl Gear5 {
         g
     }
 
+    #[inline(always)]
     fn velocity_lanes(&self) -> Lanes {
         let mut v = [0.0; 4];
         for i in 0..4 {
@@ -231,12 +230,8 @@ impl Stepper for Gear5 {
 
     #[inline(always)]
     fn velocity(&self) -> Dof {
-        let v = |i: usize| self.v0[i] + (self.v_dt[i] - self.v0_dt[i]) * self.inv_dt;
-        [v(0), v(1), v(2)]
-    }
-
-    fn dt(&self) -> f64 {
-        self.dt
+        let v = self.velocity_lanes();
+        [v[0], v[1], v[2]]
     }
 
     fn path(&self, s: f64) -> Dof {
@@ -268,9 +263,10 @@ impl Stepper for Gear5 {
         }
         if ratio > 1.0 {
             // Longer steps magnify what the short ones left in the highest terms (by 2^4 and
-            // 2^5 when doubling). Along x and phi that is the tangential force's stick/slip
-            // noise, which then disturbs the energy balance: those terms are rebuilt by the
-            // corrector instead. (The height's are kept: the error control watches it.)
+            // 2^5 when doubling). Along x and phi those terms are rebuilt by the corrector
+            // instead: magnified, the tangential force's stick/slip noise in them disturbed the
+            // energy balance (measured while frictional contacts were still refined; without
+            // friction x carries no force). The height's are kept: the error control watches it.
             for row in &mut g[4..] {
                 row[0] = 0.0;
                 row[2] = 0.0;
@@ -375,10 +371,6 @@ impl Stepper for Verlet {
     #[inline(always)]
     fn velocity(&self) -> Dof {
         [self.v[0], self.v[1], self.v[2]]
-    }
-
-    fn dt(&self) -> f64 {
-        self.dt
     }
 
     fn path(&self, s: f64) -> Dof {
