@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 import restitution as rs
-from restitution import analysis, figures
+from restitution.study import analysis, figures
 
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("--disc", action="store_true", help="exact disc instead of the 120-gon")

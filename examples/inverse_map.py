@@ -12,7 +12,7 @@ import numpy as np
 import polars as pl
 
 import restitution as rs
-from restitution import inverse
+from restitution.study import inverse
 
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("--quantity", default="e_t", choices=("e_t", "e_kin"))

@@ -10,7 +10,7 @@ import polars as pl
 import pytest
 
 import restitution as rs
-from restitution import analysis, theory
+from restitution.study import analysis, theory
 
 
 def test_doctests():

@@ -10,7 +10,7 @@ import pytest
 
 import restitution as rs
 from restitution.cli import main
-from restitution.config import ConfigError, load_config, spec_from_dict, spec_to_dict
+from restitution.runs.config import ConfigError, load_config, spec_from_dict, spec_to_dict
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "sweep_config.toml"
 

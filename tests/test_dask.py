@@ -11,7 +11,7 @@ from polars.testing import assert_frame_equal
 
 import restitution as rs
 from restitution.cli import main
-from restitution.dataset import read_dataset, read_manifest, sweep_to_dataset
+from restitution.runs.dataset import read_dataset, read_manifest, sweep_to_dataset
 
 distributed = pytest.importorskip("distributed")
 

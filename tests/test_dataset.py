@@ -19,8 +19,8 @@ from polars.testing import assert_frame_equal
 
 import restitution as rs
 from restitution.cli import main
-from restitution.config import load_config
-from restitution.dataset import (MANIFEST, missing_chunks, read_dataset, read_manifest, sweep_to_dataset)
+from restitution.runs.config import load_config
+from restitution.runs.dataset import (MANIFEST, missing_chunks, read_dataset, read_manifest, sweep_to_dataset)
 
 CHEAP = rs.Scene(integrator="verlet", dt_factor=0.09)  # below the verlet bound of the 5- and 6-gon too
 AXES: dict[str, Any] = {"theta_deg": np.linspace(5.0, 90.0, 18), "mu": [0.0, 0.5, 1.0]}

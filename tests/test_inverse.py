@@ -10,7 +10,7 @@ import polars as pl
 import pytest
 
 import restitution as rs
-from restitution import inverse, theory
+from restitution.study import inverse, theory
 
 
 def test_doctests():

@@ -13,7 +13,7 @@ import pytest
 from polars.testing import assert_frame_equal
 
 import restitution as rs
-from restitution.sweep import SweepSpec
+from restitution.runs.sweep import SweepSpec
 
 CHEAP = rs.Scene(integrator="verlet", dt_factor=0.09)  # ~55 steps per contact: fast, still physical (below the 5-gon's bound)
 

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from restitution import theory
+from restitution.study import theory
 
 R, V = 0.01, 0.0357
 

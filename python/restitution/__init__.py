@@ -10,9 +10,9 @@ from ._core import __version__
 from .scene import MAX_DT_FACTOR, Scene
 from .shapes import ConvexPolygon, Disc, RegularPolygon
 from .simulate import Record, simulate
-from .dataset import read_dataset, sweep_to_dataset
-from .sweep import sweep
-from . import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
+from .runs.dataset import read_dataset, sweep_to_dataset
+from .runs.sweep import sweep
+from .study import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
 
 __all__ = [
     "ConvexPolygon",

@@ -23,7 +23,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     import restitution as rs
-    from restitution import figures
+    from ..study import figures
 
     if not (0.0 < args.step <= 85.0):
         raise ValueError(f"require `--step` in (0, 85] degrees (found {args.step})")

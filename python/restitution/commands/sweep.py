@@ -26,8 +26,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..config import load_config
-    from ..dataset import sweep_to_dataset
+    from ..runs.config import load_config
+    from ..runs.dataset import sweep_to_dataset
 
     spec, config_chunk = load_config(args.config)
     chunk = args.chunk_size if args.chunk_size is not None else config_chunk

@@ -19,27 +19,28 @@
 //! from the plate; spin is counter-clockwise positive; units are per unit depth.
 #![warn(missing_docs)]
 
-pub mod contact;
+// Layers, each using only those below it: `error`, `geometry` (shapes and their overlap with
+// the plate), `model` (scene and derived model), `law` (the contact forces), `integrate` (how
+// time advances), `impact` (one impact to a record), `sweep` (many impacts).
 pub mod error;
-pub mod events;
 pub mod geometry;
 pub mod impact;
 pub mod integrate;
-pub mod obstacle;
-pub mod reference;
-pub mod scene;
-pub mod stability;
+pub mod law;
+pub mod model;
 pub mod sweep;
-pub mod tangential;
 
 pub use error::{Error, Result};
-pub use geometry::{Corners, Overlap, OverlapMethod, Polygon, Shape};
+pub use geometry::{ConvexObstacle, Corners, Overlap, OverlapMethod, Patch, Polygon, Shape};
 pub use impact::{
     estimate_max_depth, simulate, simulate_model, simulate_with_trace, Record, Trace,
 };
-pub use obstacle::{ConvexObstacle, Patch};
-pub use reference::{simulate_reference, simulate_reference_with_trace, ReferenceOptions};
-pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};
-pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};
+pub use integrate::adaptive::{
+    simulate_reference, simulate_reference_with_trace, ReferenceOptions,
+};
+pub use law::StickState;
+pub use model::{
+    max_dt_factor, max_dt_factor_reason, sin_cos_deg, ContactRates, InertiaModel, Initial,
+    Integrator, Model, NormalLaw, Scene,
+};
 pub use sweep::{run_cases, Case};
-pub use tangential::StickState;

@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::impact::{simulate, Record};
-use crate::scene::{Initial, Scene};
+use crate::model::{Initial, Scene};
 use rayon::prelude::*;
 
 /// One impact to run.

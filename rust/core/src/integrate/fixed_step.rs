@@ -3,7 +3,7 @@
 //! Each step evaluates the contact law exactly once (the tangential spring is history
 //! dependent, so every evaluation is a committed step).
 
-use crate::contact::{Contact, Dof, Forces, PlateGeometry};
+use crate::law::{Contact, Dof, Forces, PlateGeometry};
 
 /// Gear corrector coefficients for second-order equations with velocity-dependent forces.
 const GEAR5_CORRECTOR: [f64; 6] = [
@@ -18,7 +18,7 @@ const GEAR5_CORRECTOR: [f64; 6] = [
 /// A fixed-step integrator over (x, y, phi).
 ///
 /// Besides the fixed step, a stepper can shorten one step and restart on a new branch of the
-/// contact law: [`crate::events`] uses this to land a step exactly on a touch, a separation or a
+/// contact law: [`crate::integrate::events`] uses this to land a step exactly on a touch, a separation or a
 /// corner crossing of a polygon (where the force is not smooth) and to go on from there with
 /// the new branch's acceleration and jerk instead of extrapolating the old branch.
 pub trait Stepper: Clone {

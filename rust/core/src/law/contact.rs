@@ -1,9 +1,9 @@
 //! The contact law: normal force (area or linear law, with damping, never attractive) and the
 //! tangential force, evaluated once per time step at the integrator's predicted state.
 
-use crate::geometry::{disc_segment, Overlap, OverlapMethod, Shape};
-use crate::scene::{Model, NormalLaw};
-use crate::tangential::{StickState, TangentialSpring};
+use crate::geometry::{disc_segment, parry, Overlap, OverlapMethod, Shape};
+use crate::law::tangential::{StickState, TangentialSpring};
+use crate::model::{Model, NormalLaw};
 
 /// Position (x, y, phi) or velocity (vx, vy, omega) of the particle.
 pub type Dof = [f64; 3];
@@ -92,7 +92,8 @@ impl PlateGeometry for DiscPlate {
     }
 }
 
-/// Any shape, through [`Shape::overlap_with`] (polygons: half-plane clipping or parry).
+/// Any shape: the disc's closed form, or for polygons the half-plane clip or parry's
+/// general intersection, as `method` says.
 #[derive(Debug, Clone, Copy)]
 pub struct ShapePlate<'a> {
     /// The particle's shape.
@@ -117,7 +118,12 @@ impl PlateGeometry for ShapePlate<'_> {
 
     #[inline(always)]
     fn overlap(&self, y: f64, phi: f64) -> Option<Overlap> {
-        self.shape.overlap_with(self.method, y, phi)
+        match (self.shape, self.method) {
+            // A disc always uses its closed form: `OverlapMethod::check_shape` refuses parry
+            // for it before an impact starts.
+            (Shape::Polygon(p), OverlapMethod::Parry) => parry::plate_overlap(p, y, phi),
+            _ => self.shape.overlap(y, phi),
+        }
     }
 
     #[inline(always)]

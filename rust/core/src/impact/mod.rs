@@ -1,15 +1,16 @@
 //! One impact, from first touch to separation: the record of MODEL.md and an optional trace.
 
-use crate::contact::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate};
 use crate::error::{Error, Result};
-use crate::events;
 use crate::geometry::Shape;
+use crate::integrate::events;
 use crate::integrate::{Gear5, Stepper, Verlet};
-use crate::scene::{Initial, Integrator, Model, NormalLaw, Scene};
+use crate::law::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate};
+use crate::model::{Initial, Integrator, Model, Scene};
 use std::f64::consts::PI;
 
-/// A contact that has not ended after this many estimated contact times is stopped.
-pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
+pub mod record;
+
+pub use record::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
 
 /// Smallest estimated maximal depth, in units of the spacing of doubles at the centre's height
 /// (ulp(r)), that an impact may have: below it the centre's height cannot resolve the overlap
@@ -38,102 +39,6 @@ fn crossing_fraction(prev_depth: f64, depth: f64) -> f64 {
     }
 }
 
-/// What one impact returns (public names of MODEL.md).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct Record {
-    /// Normal restitution -vy' / vy.
-    pub e_n: f64,
-    /// Tangential restitution vx' / vx of the centre of mass; `None` when vx = 0.
-    pub e_t: Option<f64>,
-    /// Kinematic restitution |v'| / |v|.
-    pub e_kin: f64,
-    /// Spin after the impact (rad/s).
-    pub omega_out: f64,
-    /// Contact-point restitution -v_cp' / v_cp, v_cp = vx + r omega; `None` when v_cp = 0.
-    pub beta: Option<f64>,
-    /// atan2(vy', vx') in degrees.
-    pub rebound_angle_deg: f64,
-    /// Velocity after the impact (m/s).
-    pub vx_out: f64,
-    /// See `vx_out`.
-    pub vy_out: f64,
-    /// Time with overlap, summed over contacts, crossings interpolated linearly (s).
-    pub contact_time: f64,
-    /// Integration steps from first touch to the end.
-    pub steps: u64,
-    /// Number of contacts (re-contacts of a spinning polygon belong to the same impact).
-    pub contacts: u32,
-    /// Largest depth of the lowest point below the plate (m).
-    pub max_depth: f64,
-    /// Largest overlap area (m^2).
-    pub max_area: f64,
-    /// Stick to slip transitions.
-    pub slip_events: u64,
-    /// Kinetic energy (translation + rotation) before the impact (J/m).
-    pub energy_in: f64,
-    /// Kinetic energy after the impact (J/m).
-    pub energy_out: f64,
-    /// Work of the normal force on the body (J/m, <= 0 up to integration error).
-    pub work_normal: f64,
-    /// Work of the tangential force on the body (J/m, <= 0 up to integration error).
-    pub work_friction: f64,
-    /// (energy_out - energy_in - work_normal - work_friction) / energy_in.
-    pub energy_residual: f64,
-    /// The particle left the plate and cleared it.
-    pub separated: bool,
-    /// Stopped after TIMEOUT_CONTACT_TIMES estimated contact times.
-    pub timed_out: bool,
-}
-
-/// Per-step history of one impact, as columns (one entry per step, the first at touch).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Trace {
-    /// Time since first touch (s).
-    pub t: Vec<f64>,
-    /// Centre of mass x (m).
-    pub x: Vec<f64>,
-    /// Centre of mass y (m).
-    pub y: Vec<f64>,
-    /// Orientation (rad).
-    pub phi: Vec<f64>,
-    /// Velocity x (m/s).
-    pub vx: Vec<f64>,
-    /// Velocity y (m/s).
-    pub vy: Vec<f64>,
-    /// Spin (rad/s).
-    pub omega: Vec<f64>,
-    /// Normal force (N/m), clipped.
-    pub f_n: Vec<f64>,
-    /// Tangential force (N/m).
-    pub f_t: Vec<f64>,
-    /// Overlap area (m^2).
-    pub area: Vec<f64>,
-    /// Depth of the lowest point, negative when clear (m).
-    pub depth: Vec<f64>,
-    /// 0 no tangential contact, 1 stick, 2 slip.
-    pub stick: Vec<u8>,
-    /// Tangential spring elongation (m).
-    pub xi: Vec<f64>,
-}
-
-impl Trace {
-    fn push(&mut self, t: f64, q: &Dof, v: &Dof, f: &Forces, depth: f64, xi: f64) {
-        self.t.push(t);
-        self.x.push(q[0]);
-        self.y.push(q[1]);
-        self.phi.push(q[2]);
-        self.vx.push(v[0]);
-        self.vy.push(v[1]);
-        self.omega.push(v[2]);
-        self.f_n.push(f.f_el + f.f_d);
-        self.f_t.push(f.f_t);
-        self.area.push(f.overlap.map_or(0.0, |o| o.area));
-        self.depth.push(depth);
-        self.stick.push(f.stick.code());
-        self.xi.push(xi);
-    }
-}
-
 /// Simulates one impact.
 pub fn simulate(scene: &Scene, init: &Initial) -> Result<Record> {
     let model = Model::new(scene)?;
@@ -152,56 +57,6 @@ pub fn simulate_with_trace(scene: &Scene, init: &Initial) -> Result<(Record, Tra
     let mut trace = Trace::default();
     let rec = run(&model, init, Some(&mut trace))?;
     Ok((rec, trace))
-}
-
-/// Elastic potential of the normal law at depth `depth` below touch, orientation `phi`,
-/// translation only (J/m).
-fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
-    match model.scene.normal_law {
-        NormalLaw::Area => {
-            let shape = &model.scene.shape;
-            let y = shape.touch_height(phi) - depth;
-            shape.overlap(y, phi).map_or(0.0, |o| {
-                model.scene.e_modulus * o.first_moment / model.length
-            })
-        }
-        NormalLaw::Linear { kn, .. } => 0.5 * kn * depth * depth,
-    }
-}
-
-/// Largest depth from the energy balance of the normal law without damping, and a check that
-/// it stays below r / 2 (beyond that the overlap law describes no real contact).
-pub fn estimate_max_depth(model: &Model, init: &Initial) -> Result<f64> {
-    let ke_n = 0.5 * model.mass * init.vy * init.vy;
-    let half_r = 0.5 * model.r;
-    if normal_potential(model, half_r, init.phi0) < ke_n {
-        let (stiff_name, stiff) = match model.scene.normal_law {
-            NormalLaw::Area => ("E", model.scene.e_modulus),
-            NormalLaw::Linear { kn, .. } => ("kn", kn),
-        };
-        let v = (init.vx * init.vx + init.vy * init.vy).sqrt();
-        return Err(Error::invalid(
-            "v",
-            v,
-            format!(
-                "small enough that the estimated depth stays below r / 2 at {stiff_name} = {stiff:e} Pa \
-                 (normal kinetic energy {ke_n:e} J/m exceeds the elastic energy at depth r / 2: lower v or raise {stiff_name})"
-            ),
-        ));
-    }
-    let (mut lo, mut hi) = (0.0, half_r);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if normal_potential(model, mid, init.phi0) < ke_n {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    Ok(hi)
 }
 
 fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Record> {
@@ -255,11 +110,11 @@ fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Recor
             depth_est,
             trace,
         )),
-        Integrator::Reference => Ok(crate::reference::integrate(
+        Integrator::Reference => Ok(crate::integrate::adaptive::integrate(
             model,
             init,
             depth_est,
-            &crate::reference::ReferenceOptions::default(),
+            &crate::integrate::adaptive::ReferenceOptions::default(),
             trace,
         )),
     }

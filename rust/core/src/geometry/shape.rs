@@ -4,7 +4,7 @@
 //! polygons are clipped against the half-plane y <= 0 (one Sutherland-Hodgman pass, no
 //! allocation). Both return the same [`Overlap`] summary, which is all the contact law needs.
 //! The general convex-convex intersection (finite plates, any convex obstacle) lives in
-//! [`crate::obstacle`]; [`OverlapMethod::Parry`] routes the flat plate through it so that the
+//! [`crate::geometry::parry`]; [`OverlapMethod::Parry`] routes the flat plate through it so that the
 //! two paths can be compared on the same scene.
 
 use crate::error::{ensure_param, positive, Result};
@@ -188,16 +188,6 @@ impl Shape {
         match self {
             Shape::Disc { r } => disc_segment(*r, y),
             Shape::Polygon(p) => p.clip_below_plate(y, phi),
-        }
-    }
-
-    /// Overlap with the plate computed by `method`. A disc always uses its closed form
-    /// ([`OverlapMethod::check_shape`] refuses parry for it before an impact starts).
-    #[inline]
-    pub fn overlap_with(&self, method: OverlapMethod, y: f64, phi: f64) -> Option<Overlap> {
-        match (self, method) {
-            (Shape::Polygon(p), OverlapMethod::Parry) => crate::obstacle::plate_overlap(p, y, phi),
-            _ => self.overlap(y, phi),
         }
     }
 

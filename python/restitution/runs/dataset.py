@@ -31,10 +31,10 @@ from typing import Any, Callable
 
 import polars as pl
 
-from . import _core
+from .. import _core
 from ._progress import Progress, StopOnInterrupt, want_progress
 from .config import spec_to_dict
-from .scene import Scene
+from ..scene import Scene
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
 FORMAT = "restitution-sweep/1"

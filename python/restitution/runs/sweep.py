@@ -16,11 +16,11 @@ from typing import Any
 import numpy as np
 import polars as pl
 
-from . import _core
-from ._columns import (AXES, CHOICE_AXES, build_columns, check_combinations, records_frame, template_vertices,
+from .. import _core
+from .._columns import (AXES, CHOICE_AXES, build_columns, check_combinations, records_frame, template_vertices,
                        validate_axis)
 from ._progress import Progress, want_progress
-from .scene import INERTIAS, INTEGRATORS, NORMAL_LAWS, Scene
+from ..scene import INERTIAS, INTEGRATORS, NORMAL_LAWS, Scene
 
 #: Cases per engine call unless told otherwise. Each call runs on all threads with the GIL
 #: released; between calls a sweep reports progress and honours Ctrl-C. Large enough that the

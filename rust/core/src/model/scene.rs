@@ -39,14 +39,14 @@ pub enum Integrator {
     /// Velocity Verlet; velocity-dependent forces see the predicted velocity v + a dt.
     Verlet,
     /// High-accuracy reference: adaptive Dormand-Prince 5(4) with the contact's switches
-    /// located (see [`crate::reference`]); `dt_factor` is its largest step in units of t_ref.
+    /// located (see [`crate::integrate::adaptive`]); `dt_factor` is its largest step in units of t_ref.
     Reference,
 }
 
 impl Integrator {
     /// Largest accepted stiffness index h = dt * (fastest rate of the contact), the measured
     /// stability bound divided by a safety margin of 2 (and rounded down); see
-    /// [`crate::stability`] for the rates.
+    /// [`crate::model::stability`] for the rates.
     ///
     /// Measured by scanning h upward (`tests/stability.rs`, `measure`) over the disc, the
     /// 120-gon and a square (face and corner first), head-on and oblique, mu 0 and 1 (full

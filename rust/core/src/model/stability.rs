@@ -32,9 +32,9 @@
 //!   omega_t = sqrt(k_t / m_t) and lambda_t = c_t / m_t = gamma_t omega_t, with
 //!   m_t = 1 / (1 / m + r^2 / I).
 
+use super::scene::{Integrator, Model, NormalLaw, Scene};
 use crate::error::{ensure_param, Result};
 use crate::geometry::Shape;
-use crate::scene::{Integrator, Model, NormalLaw, Scene};
 
 /// Upper bounds on the rates of the contact's linearised equations of motion (1/s), over
 /// every state the contact can reach.

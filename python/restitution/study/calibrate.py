@@ -29,9 +29,9 @@ from typing import Callable
 import numpy as np
 
 from . import theory
-from ._validation import check_theta
-from .scene import Scene
-from .simulate import simulate
+from .._validation import check_theta
+from ..scene import Scene
+from ..simulate import simulate
 
 
 @dataclass(frozen=True)

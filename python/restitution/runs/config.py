@@ -32,9 +32,9 @@ from typing import Any, Mapping
 
 import polars as pl
 
-from ._columns import AXES, CHOICE_AXES
-from .scene import Scene
-from .shapes import ConvexPolygon, Disc, RegularPolygon
+from .._columns import AXES, CHOICE_AXES
+from ..scene import Scene
+from ..shapes import ConvexPolygon, Disc, RegularPolygon
 from .sweep import SweepSpec, check_chunk_size
 
 #: [scene] keys besides ``preset`` and the ``shape`` table.

@@ -14,7 +14,7 @@ from typing import Any, Callable, Sequence
 
 import polars as pl
 
-from . import _core
+from .. import _core
 from .sweep import Chunk, SweepSpec
 
 

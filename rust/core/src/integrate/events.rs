@@ -17,9 +17,9 @@
 //! events the integrators are untouched; the exact disc has no events and its loop is compiled
 //! without any of this.
 
-use crate::contact::{Contact, Dof, Forces, PlateGeometry};
 use crate::geometry::{Corners, Overlap};
 use crate::integrate::Stepper;
+use crate::law::{Contact, Dof, Forces, PlateGeometry};
 
 /// Length of the one-sided peeks, as a fraction of the step: short enough that the peeks stay
 /// on the new branch, long enough that their differences keep ~1e-13 relative precision.

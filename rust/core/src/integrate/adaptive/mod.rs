@@ -10,7 +10,7 @@
 //! the whole impact accurate to about the tolerance.
 //!
 //! The continuous-time law is the dt -> 0 limit of the discrete rule of MODEL.md:
-//! - Normal force: as in [`crate::contact`], clipped to zero while F_el + F_d < 0.
+//! - Normal force: as in [`crate::law`], clipped to zero while F_el + F_d < 0.
 //! - Cundall-Strack spring: while sticking dxi/dt = v_t and F_t = -k_t xi - c_t v_t with
 //!   |F_t| <= mu F_n; while slipping F_t = mu F_n s (s the sign of the trial force) and the spring
 //!   follows algebraically, xi = -(F_t + c_t v_t) / k_t. Slip ends when the trial force of a
@@ -27,12 +27,12 @@
 //! `dt_factor` means the largest (and the first) step, in units of t_ref; the accuracy is set
 //! by [`ReferenceOptions::tol`].
 
-use crate::contact::Forces;
 use crate::error::Result;
 use crate::geometry::{Overlap, Shape};
-use crate::impact::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
-use crate::scene::{Initial, Integrator, Model, NormalLaw, Scene};
-use crate::tangential::StickState;
+use crate::impact::record::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::law::Forces;
+use crate::law::StickState;
+use crate::model::{Initial, Integrator, Model, NormalLaw, Scene};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
