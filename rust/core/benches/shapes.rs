@@ -69,9 +69,12 @@ fn bench(c: &mut Criterion) {
         let (y, phi) = mid_contact(&scene.shape);
         group.bench_function(name, |b| {
             b.iter(|| {
-                scene
-                    .shape
-                    .overlap_with(scene.overlap, black_box(y), black_box(phi))
+                restitution_core::plate_overlap(
+                    &scene.shape,
+                    scene.overlap,
+                    black_box(y),
+                    black_box(phi),
+                )
             })
         });
     }
@@ -113,11 +116,12 @@ fn summary() {
         }) / steps as f64;
         let (y, phi) = mid_contact(&scene.shape);
         let per_overlap = best_ns(|| {
-            black_box(
-                scene
-                    .shape
-                    .overlap_with(scene.overlap, black_box(y), black_box(phi)),
-            );
+            black_box(restitution_core::plate_overlap(
+                &scene.shape,
+                scene.overlap,
+                black_box(y),
+                black_box(phi),
+            ));
         });
         let (d_step, d_overlap) = *disc.get_or_insert((per_step, per_overlap));
         println!(

@@ -33,14 +33,16 @@ pub mod sweep;
 pub use error::{Error, Result};
 pub use geometry::{ConvexObstacle, Corners, Overlap, OverlapMethod, Patch, Polygon, Shape};
 pub use impact::{
-    estimate_max_depth, simulate, simulate_model, simulate_with_trace, Record, Trace,
+    estimate_max_depth, simulate, simulate_model, simulate_with_trace, Cell, Record, Trace,
+    RECORD_COLUMNS,
 };
 pub use integrate::adaptive::{
     simulate_reference, simulate_reference_with_trace, ReferenceOptions,
 };
-pub use law::StickState;
+pub use law::{plate_overlap, StickState};
 pub use model::{
-    max_dt_factor, max_dt_factor_reason, sin_cos_deg, ContactRates, InertiaModel, Initial,
-    Integrator, Model, NormalLaw, Scene,
+    check_case, check_theta, max_dt_factor, max_dt_factor_reason, scene_from_columns, sin_cos_deg,
+    ContactRates, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene, CASE_COLUMNS,
+    CHOICES,
 };
 pub use sweep::{run_cases, Case};

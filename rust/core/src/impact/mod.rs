@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 pub mod record;
 
-pub use record::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
+pub use record::{estimate_max_depth, Cell, Record, Trace, RECORD_COLUMNS, TIMEOUT_CONTACT_TIMES};
 
 /// Smallest estimated maximal depth, in units of the spacing of doubles at the centre's height
 /// (ulp(r)), that an impact may have: below it the centre's height cannot resolve the overlap

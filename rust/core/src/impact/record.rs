@@ -57,6 +57,42 @@ pub struct Record {
     pub timed_out: bool,
 }
 
+/// One value of a record column, as a binding stores it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Cell {
+    /// A float.
+    F64(f64),
+    /// A float that may be undefined (e_t at theta = 90, beta when v_cp = 0).
+    Opt(Option<f64>),
+    /// A count.
+    Int(u64),
+    /// A flag.
+    Bool(bool),
+}
+
+/// Names the record's columns and reads them, in one list: the schema every binding exports.
+macro_rules! record_columns {
+    ($($name:ident: $kind:ident $(as $cast:ty)?),* $(,)?) => {
+        /// The record's column names, in output order (the public names of the model).
+        pub const RECORD_COLUMNS: [&str; [$(stringify!($name)),*].len()] = [$(stringify!($name)),*];
+
+        impl Record {
+            /// The record's values in the order of [`RECORD_COLUMNS`].
+            pub fn cells(&self) -> [Cell; RECORD_COLUMNS.len()] {
+                [$(Cell::$kind(self.$name $(as $cast)?)),*]
+            }
+        }
+    };
+}
+
+record_columns! {
+    e_n: F64, e_t: Opt, e_kin: F64, omega_out: F64, beta: Opt, rebound_angle_deg: F64,
+    vx_out: F64, vy_out: F64, contact_time: F64, steps: Int, contacts: Int as u64,
+    max_depth: F64, max_area: F64, slip_events: Int, energy_in: F64, energy_out: F64,
+    work_normal: F64, work_friction: F64, energy_residual: F64, separated: Bool,
+    timed_out: Bool,
+}
+
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Trace {

@@ -92,6 +92,18 @@ impl PlateGeometry for DiscPlate {
     }
 }
 
+/// The overlap of `shape` with the plate at height `y` and orientation `phi`, computed by
+/// `method`: the disc's closed form, or for polygons the half-plane clip or parry's general
+/// intersection. A disc always uses its closed form (`OverlapMethod::check_shape` refuses
+/// parry for it before an impact starts).
+#[inline(always)]
+pub fn plate_overlap(shape: &Shape, method: OverlapMethod, y: f64, phi: f64) -> Option<Overlap> {
+    match (shape, method) {
+        (Shape::Polygon(p), OverlapMethod::Parry) => parry::plate_overlap(p, y, phi),
+        _ => shape.overlap(y, phi),
+    }
+}
+
 /// Any shape: the disc's closed form, or for polygons the half-plane clip or parry's
 /// general intersection, as `method` says.
 #[derive(Debug, Clone, Copy)]
@@ -118,12 +130,7 @@ impl PlateGeometry for ShapePlate<'_> {
 
     #[inline(always)]
     fn overlap(&self, y: f64, phi: f64) -> Option<Overlap> {
-        match (self.shape, self.method) {
-            // A disc always uses its closed form: `OverlapMethod::check_shape` refuses parry
-            // for it before an impact starts.
-            (Shape::Polygon(p), OverlapMethod::Parry) => parry::plate_overlap(p, y, phi),
-            _ => self.shape.overlap(y, phi),
-        }
+        plate_overlap(self.shape, self.method, y, phi)
     }
 
     #[inline(always)]

@@ -4,5 +4,8 @@
 pub mod scene;
 pub mod stability;
 
-pub use scene::{sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene};
+pub use scene::{
+    check_case, check_theta, scene_from_columns, sin_cos_deg, InertiaModel, Initial, Integrator,
+    Model, NormalLaw, Scene, CASE_COLUMNS, CHOICES,
+};
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

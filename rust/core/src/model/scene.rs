@@ -304,3 +304,144 @@ impl Model {
         Ok(())
     }
 }
+
+/// The one schema of a scene's parameters as per-case columns, shared with every binding:
+/// a binding reads these columns by name (all float64; a choice is the index of its name in
+/// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
+/// Adding a parameter means a field of [`Scene`], a name here and its line in
+/// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
+pub const CASE_COLUMNS: [&str; 19] = [
+    "theta_deg",
+    "omega_in",
+    "v",
+    "mu",
+    "gamma",
+    "gamma_t",
+    "E",
+    "rho",
+    "r",
+    "phi0_deg",
+    "dt_factor",
+    "kn",
+    "cn",
+    "kt",
+    "n",
+    "integrator",
+    "normal_law",
+    "inertia",
+    "overlap",
+];
+
+/// Public names of every choice, in code order: a choice column holds the index of its name.
+pub const CHOICES: [(&str, &[&str]); 4] = [
+    ("integrator", &["gear5", "verlet", "reference"]),
+    ("normal_law", &["area", "linear"]),
+    ("inertia", &["shape", "sphere"]),
+    ("overlap", &["auto", "halfplane", "parry"]),
+];
+
+/// The impact angle's rule, written once: in (0, 90] degrees, measured from the plate.
+pub fn check_theta(theta_deg: f64) -> Result<()> {
+    ensure_param!(
+        theta_deg.is_finite() && theta_deg > 0.0 && theta_deg <= 90.0,
+        "theta_deg",
+        theta_deg,
+        "in (0, 90] degrees, measured from the plate"
+    );
+    Ok(())
+}
+
+/// The index a choice column holds, checked against the names of [`CHOICES`].
+fn choice(name: &str, code: f64) -> Result<usize> {
+    let names = CHOICES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map_or(&[][..], |c| c.1);
+    let listed: Vec<String> = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| format!("{i} ({n})"))
+        .collect();
+    ensure_param!(
+        code.fract() == 0.0 && code >= 0.0 && (code as usize) < names.len(),
+        name,
+        code,
+        format!("a code in {}", listed.join(", "))
+    );
+    Ok(code as usize)
+}
+
+/// An optional parameter: NaN means unset.
+fn optional(value: f64) -> Option<f64> {
+    (!value.is_nan()).then_some(value)
+}
+
+/// The particle's shape from the columns `n` (0: exact disc, >= 3: regular n-gon) and `r`,
+/// or from unit-circumradius `vertices` scaled by `r` (then `n` is ignored).
+fn shape_from_columns(n: f64, r: f64, vertices: Option<&[[f64; 2]]>) -> Result<Shape> {
+    if let Some(v) = vertices {
+        positive("r", r)?;
+        let scaled: Vec<[f64; 2]> = v.iter().map(|p| [p[0] * r, p[1] * r]).collect();
+        return Shape::convex_polygon(&scaled);
+    }
+    ensure_param!(
+        n.fract() == 0.0 && (n == 0.0 || (3.0..=1e7).contains(&n)),
+        "n",
+        n,
+        "an integer >= 3, or 0 for an exact disc"
+    );
+    if n == 0.0 {
+        Shape::disc(r)
+    } else {
+        Shape::regular_polygon(r, n as usize)
+    }
+}
+
+/// One case (scene and initial state) from a row of [`CASE_COLUMNS`]. Checks the columns'
+/// own rules (codes, shape, angle, speed); the scene's rules are [`Model::new`]'s, applied
+/// when the case runs or by [`check_case`].
+pub fn scene_from_columns(
+    row: &[f64; CASE_COLUMNS.len()],
+    vertices: Option<&[[f64; 2]]>,
+) -> Result<(Scene, Initial)> {
+    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap] =
+        *row;
+    check_theta(theta)?;
+    positive("v", v)?;
+    finite("omega_in", omega)?;
+    finite("phi0_deg", phi0)?;
+    let stiffness = optional(kn).unwrap_or(e);
+    let normal_law = match choice("normal_law", law)? {
+        0 => NormalLaw::Area,
+        _ => NormalLaw::Linear {
+            kn: stiffness,
+            cn: optional(cn).unwrap_or(0.0),
+        },
+    };
+    let scene = Scene {
+        shape: shape_from_columns(n, r, vertices)?,
+        rho,
+        e_modulus: e,
+        gamma,
+        gamma_t,
+        mu,
+        kt: optional(kt),
+        normal_law,
+        inertia: [InertiaModel::Shape, InertiaModel::Sphere][choice("inertia", inertia)?],
+        integrator: [Integrator::Gear5, Integrator::Verlet, Integrator::Reference]
+            [choice("integrator", integ)?],
+        dt_factor: dtf,
+        overlap: [
+            OverlapMethod::Auto,
+            OverlapMethod::HalfPlane,
+            OverlapMethod::Parry,
+        ][choice("overlap", overlap)?],
+    };
+    Ok((scene, Initial::from_angle(v, theta, omega, phi0)))
+}
+
+/// Every rule a case must meet before it runs: the scene's ([`Model::new`], the time-step
+/// bound included) and the initial state's.
+pub fn check_case(scene: &Scene, init: &Initial) -> Result<()> {
+    Model::new(scene)?.check_initial(init)
+}

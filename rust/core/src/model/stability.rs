@@ -33,7 +33,7 @@
 //!   m_t = 1 / (1 / m + r^2 / I).
 
 use super::scene::{Integrator, Model, NormalLaw, Scene};
-use crate::error::{ensure_param, Result};
+use crate::error::{ensure_param, Error, Result};
 use crate::geometry::Shape;
 
 /// Upper bounds on the rates of the contact's linearised equations of motion (1/s), over
@@ -216,17 +216,19 @@ impl Model {
     pub(crate) fn check_dt(&self) -> Result<()> {
         let s = &self.scene;
         let bound = self.max_dt_factor();
-        let why = self.dt_bound_reason();
-        ensure_param!(
-            s.dt_factor.is_finite() && s.dt_factor > 0.0 && s.dt_factor <= bound,
-            "dt_factor",
-            s.dt_factor,
-            format!(
-                "in (0, {}] for the {} integrator ({why})",
-                show(bound),
-                s.integrator.name()
-            )
-        );
+        if !(s.dt_factor.is_finite() && s.dt_factor > 0.0 && s.dt_factor <= bound) {
+            // The reason costs a second pass over the rates: only when refusing.
+            return Err(Error::invalid(
+                "dt_factor",
+                s.dt_factor,
+                format!(
+                    "in (0, {}] for the {} integrator ({})",
+                    show(bound),
+                    s.integrator.name(),
+                    self.dt_bound_reason()
+                ),
+            ));
+        }
         ensure_param!(
             self.dt.is_finite() && self.dt > 0.0,
             "dt",
