@@ -1,4 +1,4 @@
-"""Shared fixtures: the scenes of MODEL.md that several test files start from."""
+"""Shared fixtures: the scenes of docs/model.md that several test files start from."""
 
 from __future__ import annotations
 

@@ -145,7 +145,7 @@ def test_micro_slip_zero_for_rigid_body_and_falls_with_gamma_t():
     df = rs.sweep(rs.Scene(mu=1.0), theta_deg=np.arange(20.0, 89.0, 0.5), mu=[1.0], gamma_t=[0.25, 0.5, 1.0])
     ms = analysis.micro_slip(df).sort("gamma_t")
     amp = ms["amplitude"].to_numpy()
-    # MODEL.md: stronger tangential damping damps the oscillation about 2/3 (-7/+5 %, +-1.3 %, +-0.3 %).
+    # docs/model.md, section 5: stronger tangential damping damps the oscillation about 2/3 (-7/+5 %, +-1.3 %, +-0.3 %).
     assert amp[0] > amp[1] > amp[2] > 0
     assert 0.002 < amp[1] < 0.03  # the study: about 2 %
 

@@ -26,7 +26,7 @@ def test_gamma_hits_target_e_n(target):
 
 
 def test_paper_preset_gamma_is_the_calibrated_one():
-    """MODEL.md: gamma ~ 0.33 is the preset calibrated to e_N = 0.90 head-on."""
+    """docs/model.md, section 12: gamma ~ 0.33 is the preset calibrated to e_N = 0.90 head-on."""
     for scene in (rs.Scene.paper(), rs.Scene.paper(shape=rs.Disc(r=0.01))):
         cal = calibrate.gamma_for_e_n(scene, 0.90)
         assert round(cal.value, 2) == scene.gamma == 0.33

@@ -57,14 +57,14 @@ BAD = [
     ('[scene.shape]\nkind = "square"\n[axes]\ntheta_deg = 30', "scene.shape.kind: require one of 'disc', 'regular_polygon', 'convex_polygon'"),
     ('[scene.shape]\nkind = "disc"\nn = 3\n[axes]\ntheta_deg = 30', "scene.shape.n: unknown key; allowed: r"),
     ('[scene.shape]\nkind = "regular_polygon"\nn = 2\n[axes]\ntheta_deg = 30', "scene.shape: require `n` >= 3 (found 2)"),
-    ("[axes]\ntheta_deg = [0, 30]", "axes.theta_deg: require `theta_deg` in (0, 90] degrees"),
+    ("[axes]\ntheta_deg = [0, 30]", "axes.theta_deg: case 0: require `theta_deg` in (0, 90] degrees"),
     ("[axes]\ntheta_deg = 30\nthetaa = 1", "axes.thetaa: unknown axis (did you mean `theta_deg`?); allowed: theta_deg, omega_in"),
     ('[axes]\ntheta_deg = 30\nintegrator = ["rk4"]', "axes.integrator: require values in 'gear5', 'verlet', 'reference' (found 'rk4')"),
-    ("[axes]\ntheta_deg = 30\nn = [0, 2]", "axes.n: require `n` >= 3, or 0 for an exact disc (found 2)"),
+    ("[axes]\ntheta_deg = 30\nn = [0, 2]", "axes.n: case 1: require `n` an integer >= 3, or 0 for an exact disc (found 2.0)"),
     ("[axes]\ntheta_deg = 30\nn = [0.5]", "axes.n: require integers: 0 (exact disc) or >= 3 (found 0.5)"),
     ("[axes]\ntheta_deg = 30\nmu = []", "axes.mu: require at least one value"),
     ("[axes]\ntheta_deg = 30\ndt_factor = [0.6]",
-     f"axes.dt_factor: require `dt_factor` in (0, {rs.MAX_DT_FACTOR['gear5']}] for the gear5 integrator"),
+     f"axes.dt_factor: case 0: require `dt_factor` in (0, {rs.MAX_DT_FACTOR['gear5']}] for the gear5 integrator"),
     ("[axes]\ntheta_deg = { start = 4, stop = 1, step = 1 }", "axes.theta_deg.stop: require stop >= start (found start 4.0, stop 1.0)"),
     ("[axes]\ntheta_deg = { start = 4, stop = 10, step = -1 }", "axes.theta_deg.step: require step > 0 (found -1.0)"),
     ("[axes]\ntheta_deg = { start = 4, stop = 10 }", "axes.theta_deg: a range needs exactly one of `step` (spacing) or `num`"),
@@ -109,5 +109,5 @@ def test_cases_file_relative_to_the_config(tmp_path: Path) -> None:
     assert spec.n_cases == 2 and spec.axis_names == ("theta_deg", "mu")
     (tmp_path / "d.toml").write_text('[sweep]\ncases = "cases.csv"\n[scene]\nmu = 0.5\n')
     pl.DataFrame({"theta_deg": [30.0, 95.0]}).write_csv(tmp_path / "cases.csv")
-    with pytest.raises(ConfigError, match=r"sweep.cases: require `theta_deg` in \(0, 90\]"):
+    with pytest.raises(ConfigError, match=r"sweep.cases: case 1: require `theta_deg` in \(0, 90\]"):
         load_config(tmp_path / "d.toml")

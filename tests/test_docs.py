@@ -28,7 +28,7 @@ def test_docstring_examples(name: str) -> None:
 
 
 def test_the_public_api_has_examples() -> None:
-    # The entry points MODEL.md fixes must show how they are called.
+    # The public entry points (docs/model.md, section 2; docs/api/) must show how they are called.
     for name in ("restitution", "restitution.scene", "restitution.simulate", "restitution.runs.sweep"):
         tests = doctest.DocTestFinder().find(importlib.import_module(name))
         assert sum(len(t.examples) for t in tests) > 0, name

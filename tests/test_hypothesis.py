@@ -1,5 +1,5 @@
 """Property-based tests of the Python API (hypothesis): random scenes within the documented bounds
-keep the invariants of MODEL.md, and random bad input (NaN, inf, wrong types and shapes) is always
+keep the invariants of docs/model.md, and random bad input (NaN, inf, wrong types and shapes) is always
 a ValueError or a TypeError, never a crash or a PanicException.
 
 About 10^4 examples in all at the default scale (cheap scenes: Verlet or Gear-5 at the default

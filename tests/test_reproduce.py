@@ -41,7 +41,7 @@ def test_reproduce_numbers(quick_run):
     # Fig. 3: omega_out < 0 for mu > 0 (forward rolling), Fig. 2: e_N does not depend on mu on a disc.
     df2 = pl.read_parquet(quick_run / "fig2.parquet")
     assert (df2.filter(pl.col("mu") > 0)["omega_out"] < 0).all()
-    # Fig. 5: e_T spans about -4.15 ... 5.45 (MODEL.md, exact disc).
+    # Fig. 5: e_T spans about -4.15 ... 5.45 (docs/model.md, section 12, exact disc).
     et = pl.read_parquet(quick_run / "fig5.parquet")["e_t"]
     assert et.min() == pytest.approx(-4.15, abs=0.05) and et.max() == pytest.approx(5.45, abs=0.05)
 

@@ -1,4 +1,4 @@
-"""One impact through the public API, checked against MODEL.md's physics (exact disc).
+"""One impact through the public API, checked against the physics of docs/model.md (exact disc).
 
 Rigid-body theory for the disc, I = kappa m r^2 (kappa = 1/2; 2/5 with sphere inertia),
 v_T = v cos theta, v_N = v sin theta:
@@ -26,7 +26,7 @@ def disc_mass(scene: rs.Scene) -> float:
 
 
 def v_in(scene: rs.Scene, theta_deg: float) -> tuple[float, float]:
-    """MODEL.md: v (cos theta, -sin theta), cos exactly 0 at 90 deg."""
+    """docs/model.md, section 1: v (cos theta, -sin theta), cos exactly 0 at 90 deg."""
     t = math.radians(theta_deg)
     return (0.0 if theta_deg == 90.0 else scene.v * math.cos(t)), -scene.v * math.sin(t)
 
@@ -184,7 +184,7 @@ def test_head_on_with_spin_has_beta_but_no_e_t(disc_scene: rs.Scene) -> None:
 
 @pytest.mark.parametrize("scene", [rs.Scene(), rs.Scene.paper()], ids=["disc", "120-gon"])
 def test_paper_preset_head_on_e_n_is_the_calibration_target(scene: rs.Scene) -> None:
-    # MODEL.md: gamma ~ 0.33 is calibrated to e_N = 0.90 head-on.
+    # docs/model.md, section 12: gamma ~ 0.33 is calibrated to e_N = 0.90 head-on.
     assert rs.simulate(scene, theta_deg=90.0).e_n == pytest.approx(0.90, abs=0.005)
 
 

@@ -60,9 +60,11 @@ def test_preset_bound_is_not_below_the_former_fixed_values() -> None:
 
 def test_sweep_axes_are_checked_case_by_case() -> None:
     scene = rs.Scene(integrator="verlet", dt_factor=0.01)
-    with pytest.raises(ValueError, match=r"require `dt_factor` in \(0, [^\]]+\] for the verlet integrator at gamma = 100000\.0 "
-                                         r"\(.*the normal damping \(gamma = 100000\).*found 0\.01\)"):
+    # The product's case 1 is (theta 30, gamma 1e5): the error names it and what sets the bound.
+    with pytest.raises(rs.RestitutionError, match=r"^case 1: require `dt_factor` in \(0, [^\]]+\] for the verlet integrator "
+                                                  r"\(.*the normal damping \(gamma = 100000\).*found 0\.01\)") as info:
         rs.sweep(scene, theta_deg=[30.0, 60.0], gamma=[0.33, 1e5])
+    assert (info.value.parameter, info.value.value, info.value.case) == ("dt_factor", 0.01, 1)
     # Damping that the bound allows runs.
     assert rs.sweep(scene, theta_deg=30.0, gamma=[0.0, 0.33, 10.0]).height == 3
     cases = pl.DataFrame({"theta_deg": [30.0, 45.0], "gamma_t": [0.5, 1e4]})

@@ -12,7 +12,7 @@ import pytest
 from polars.testing import assert_frame_equal
 
 import restitution as rs
-from restitution._columns import RECORD_COLUMNS
+from restitution._engine import RECORD_COLUMNS
 
 #: Axes of issue 3 (theta, mu, gamma, omega_in), small enough to check every row one by one.
 AXES = {
@@ -173,7 +173,7 @@ def test_integrator_axis_is_a_string_column_and_matches_the_scene() -> None:
     for row in df.iter_rows(named=True):
         rec = rs.simulate(base.replace(integrator=row["integrator"]), theta_deg=50.0)
         assert {k: row[k] for k in RECORD_COLUMNS} == record_row(rec)
-    # Two integrators of the same law agree closely at the default step (MODEL.md: ~1e-4).
+    # Two integrators of the same law agree closely at the default step (docs/model.md, section 7.6: ~1e-4).
     assert math.isclose(df["e_t"][0], df["e_t"][1], rel_tol=1e-3)
 
 

@@ -61,7 +61,7 @@ def test_rows_are_single_impacts() -> None:
 
 
 def test_axes_reach_the_engine_frictionless_elastic_limit() -> None:
-    # MODEL.md: mu = 0, gamma = 0 gives e_n = e_t = 1 on a disc (at the default dt); damping
+    # docs/model.md, section 11: mu = 0, gamma = 0 gives e_n = e_t = 1 on a disc (at the default dt); damping
     # and friction lower them.
     df = rs.sweep(rs.Scene(mu=0.0, gamma=0.0), theta_deg=[30.0, 60.0], gamma=[0.0, 0.33], mu=[0.0, 0.5])
     elastic = df.filter((pl.col("gamma") == 0.0) & (pl.col("mu") == 0.0))
@@ -111,7 +111,7 @@ def test_combined_rules_checked_across_axes() -> None:
     rs.sweep(CHEAP, theta_deg=30.0, dt_factor=[verlet], integrator=["verlet"])  # fine for verlet alone
     with pytest.raises(ValueError, match=r"case 1: require `inertia` \"shape\" for polygons"):
         rs.sweep(CHEAP, cases=pl.DataFrame({"theta_deg": [30.0, 30.0], "n": [0, 5], "inertia": ["sphere"] * 2}))
-    with pytest.raises(ValueError, match=r"require `normal_law` values in \"area\", \"linear\""):
+    with pytest.raises(ValueError, match=r"require `normal_law` one of \"area\", \"linear\""):
         rs.sweep(CHEAP, theta_deg=30.0, normal_law=["hertz"])
     with pytest.raises(ValueError, match=r"require `chunk_size` an integer >= 1"):
         rs.sweep(CHEAP, theta_deg=30.0, chunk_size=0)

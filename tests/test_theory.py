@@ -1,4 +1,4 @@
-"""Rigid-body theory (restitution.theory): hand-computed values, MODEL.md's limits and the
+"""Rigid-body theory (restitution.theory): hand-computed values, the limits of docs/model.md (section 10) and the
 conservation laws an impulsive contact at the contact point must obey."""
 
 from __future__ import annotations
@@ -36,7 +36,7 @@ def test_theta_c_formula_and_model_value():
     for kappa, k in (("disc", 0.5), ("sphere", 0.4)):
         expected = np.degrees(np.arctan(k / ((1 + k) * mu * 1.9)))
         assert np.allclose(theory.theta_c(mu, 0.9, kappa=kappa), expected, atol=1e-10)
-    # MODEL.md: 9.95 deg at mu = 1 for the preset's e_N = 0.90.
+    # docs/model.md, section 10: 9.95 deg at mu = 1 for the preset's e_N = 0.90.
     assert round(float(theory.theta_c(1.0, 0.90)), 2) == 9.95
     # The regime test switches exactly there.
     tc = float(theory.theta_c(0.3, 0.85))

@@ -7,6 +7,7 @@ True
 """
 
 from ._core import __version__
+from .errors import RestitutionError
 from .scene import MAX_DT_FACTOR, Scene
 from .shapes import ConvexPolygon, Disc, RegularPolygon
 from .simulate import Record, simulate
@@ -20,6 +21,7 @@ __all__ = [
     "MAX_DT_FACTOR",
     "Record",
     "RegularPolygon",
+    "RestitutionError",
     "Scene",
     "__version__",
     "analysis",

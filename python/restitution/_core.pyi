@@ -1,40 +1,64 @@
-"""Type stubs for the compiled engine ``restitution._core`` (private: use the package API)."""
+"""Type stubs for the compiled engine ``restitution._core`` (private: use the package API).
+
+Columns are dicts of 1-D float64 arrays keyed by the names of ``CASE_COLUMNS``; a choice holds
+the index of its name in ``CHOICES``, an unset optional parameter NaN. Invalid values raise
+``restitution.RestitutionError`` naming the parameter, the value and the case (row)."""
 
 from typing import Mapping
 
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["__version__", "max_dt_factor_for", "run_cases", "trace_case"]
+__all__ = [
+    "CASE_COLUMNS",
+    "CHOICES",
+    "RECORD_COLUMNS",
+    "TRACE_COLUMNS",
+    "__version__",
+    "check_cases",
+    "check_shape",
+    "check_theta",
+    "convex_template",
+    "max_dt_factor_for",
+    "run_cases",
+    "trace_case",
+]
 
 __version__: str
+CASE_COLUMNS: tuple[str, ...]
+RECORD_COLUMNS: tuple[str, ...]
+TRACE_COLUMNS: tuple[str, ...]
+CHOICES: dict[str, tuple[str, ...]]
+
+_Columns = Mapping[str, npt.NDArray[np.float64]]
 
 def run_cases(
-    columns: Mapping[str, npt.NDArray[np.float64] | npt.NDArray[np.int64]],
+    columns: _Columns,
     vertices: npt.NDArray[np.float64] | None,
-    normal_law: str,
-    inertia: str,
     threads: int,
-    overlap: str = "auto",
 ) -> dict[str, np.ndarray]:
     """One impact per row of ``columns``; returns record columns (GIL released)."""
 
+def check_cases(columns: _Columns, vertices: npt.NDArray[np.float64] | None, threads: int = 0) -> None:
+    """Every rule of every case, without running it; raises naming the first bad case."""
+
 def trace_case(
-    columns: Mapping[str, npt.NDArray[np.float64] | npt.NDArray[np.int64]],
-    vertices: npt.NDArray[np.float64] | None,
-    normal_law: str,
-    inertia: str,
-    overlap: str = "auto",
+    columns: _Columns, vertices: npt.NDArray[np.float64] | None
 ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
     """The single case in ``columns``: (record columns, per-step trace columns)."""
 
 def max_dt_factor_for(
-    columns: Mapping[str, npt.NDArray[np.float64] | npt.NDArray[np.int64]],
-    vertices: npt.NDArray[np.float64] | None,
-    normal_law: str,
-    inertia: str,
-    explain: bool = False,
+    columns: _Columns, vertices: npt.NDArray[np.float64] | None, explain: bool = False
 ) -> tuple[npt.NDArray[np.float64], list[str] | None]:
     """Largest accepted dt_factor of each case: its integrator's stability bound for that case's
     stiffness and damping (the ``dt_factor`` column itself is ignored); with ``explain``, also
     what sets each bound, in words (else None)."""
+
+def check_shape(n: float, r: float, phi0_deg: float) -> None:
+    """Checks a shape given by its sweep columns (n = 0: exact disc, >= 3: regular n-gon)."""
+
+def check_theta(theta_deg: float) -> None:
+    """Checks an impact angle (degrees from the plate, in (0, 90])."""
+
+def convex_template(vertices: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], float]:
+    """A convex polygon checked by the engine: (vertices about the centroid over the circumradius, circumradius)."""

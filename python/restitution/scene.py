@@ -7,16 +7,15 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from ._validation import check_choice, check_non_negative, check_positive, check_real
+from . import _engine
 from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape
 
-INTEGRATORS = ("gear5", "verlet", "reference")
-NORMAL_LAWS = ("area", "linear")
-INERTIAS = ("shape", "sphere")
+INTEGRATORS = _engine.CHOICES["integrator"]
+NORMAL_LAWS = _engine.CHOICES["normal_law"]
+INERTIAS = _engine.CHOICES["inertia"]
 #: Overlap paths: what the shape requires (closed form / half-plane clip), or the general
 #: convex-convex intersection through parry (polygons only), to compare the two.
-OVERLAPS = ("auto", "halfplane", "parry")
-
+OVERLAPS = _engine.CHOICES["overlap"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -55,7 +54,7 @@ class Scene:
     contact's switches located: accurate to about 1e-10, a few times slower than gear5 at dt_factor 1)."""
     dt_factor: float = 0.01
     """dt = dt_factor * t_ref; at most ``max_dt_factor`` (the integrator's stability bound for this scene's
-    stiffness and damping: 0.0648 for gear5, 0.108 for verlet on the preset). For "reference" it is the largest
+    stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "reference" it is the largest
     (and first) step instead: its accuracy is set by its tolerance, so use dt_factor=1 for speed."""
     normal_law: str = "area"
     """"area" (force proportional to overlap area) or "linear" (spring-dashpot on the depth)."""
@@ -72,39 +71,40 @@ class Scene:
     polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""
 
     def __post_init__(self) -> None:
+        # Python checks only what the engine cannot: types and choice names. Every rule on
+        # values (ranges, combinations, the time-step bound) is the engine's, checked here once.
         if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon)):
             raise TypeError(f"`shape` must be Disc, RegularPolygon or ConvexPolygon (found {type(self.shape).__name__})")
-        for name in ("rho", "E", "v"):
-            check_positive(name, getattr(self, name))
-        for name in ("gamma", "gamma_t", "mu"):
-            check_non_negative(name, getattr(self, name))
-        check_choice("integrator", self.integrator, INTEGRATORS)
-        check_choice("normal_law", self.normal_law, NORMAL_LAWS)
-        check_choice("inertia", self.inertia, INERTIAS)
-        if self.kn is not None:
-            check_positive("kn", self.kn)
-        if self.cn is not None:
-            check_non_negative("cn", self.cn)
-        if self.kt is not None:
-            check_positive("kt", self.kt)
-        if self.inertia == "sphere" and not isinstance(self.shape, Disc):
-            raise ValueError('require `inertia` "shape" for polygons ("sphere" applies to discs only)')
-        check_choice("overlap", self.overlap, OVERLAPS)
-        if self.overlap == "parry" and isinstance(self.shape, Disc):
-            raise ValueError(
-                'require `overlap` "auto" or "halfplane" for a Disc (found "parry": the parry path '
-                "intersects polygons; use a RegularPolygon with large n to compare)"
-            )
-        # Last: the bound depends on every other field (the scene's stiffness and damping).
-        dtf = check_real("dt_factor", self.dt_factor)
-        bound = self.max_dt_factor
-        if not (math.isfinite(dtf) and 0.0 < dtf <= bound):  # one message, with the bound, for NaN too
-            why = _dt_bounds(self, explain=True)[1][0]
-            raise ValueError(f"require `dt_factor` in (0, {bound}] for the {self.integrator} integrator ({why}; found {dtf})")
+        try:
+            _engine.check(_engine.columns(self.engine_values(), {}, 1), self.template_vertices())
+        except _engine.RestitutionError as err:
+            raise err.at_case(None) from None  # a scene is not a case of a sweep
+
+    def engine_values(self) -> dict[str, float]:
+        """The scene's value of every engine column (``theta_deg`` 90 and ``omega_in`` 0 until
+        an impact sets them; None as NaN; a choice as its code)."""
+        values: dict[str, float] = {"theta_deg": 90.0, "omega_in": 0.0, "r": self.r,
+                                    "n": float(self.shape.n if not isinstance(self.shape, ConvexPolygon) else 0),
+                                    "phi0_deg": _engine.real("phi0_deg", self.shape.phi0_deg)}
+        for name in _engine.CASE_COLUMNS:
+            if name in values:
+                continue
+            value = getattr(self, name)
+            if name in _engine.CHOICES:
+                values[name] = float(_engine.code(name, value))
+            elif name in _engine.OPTIONAL:
+                values[name] = _engine.optional(name, value)
+            else:
+                values[name] = _engine.real(name, value)
+        return values
+
+    def template_vertices(self) -> Any:
+        """Unit-circumradius vertices of a ConvexPolygon scene (the engine scales them by r), else None."""
+        return self.shape._template if isinstance(self.shape, ConvexPolygon) else None
 
     @classmethod
     def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:
-        """The study's preset (MODEL.md): a 120-gon of circumradius 0.01 m unless ``shape`` is given."""
+        """The study's preset (docs/model.md): a 120-gon of circumradius 0.01 m unless ``shape`` is given."""
         return cls(shape=shape if shape is not None else RegularPolygon(r=0.01, n=120, phi0_deg=0.0), **changes)
 
     def replace(self, **changes: Any) -> Scene:
@@ -115,23 +115,15 @@ class Scene:
     def max_dt_factor(self) -> float:
         """Largest ``dt_factor`` this scene accepts: its integrator's stability bound for its
         stiffness and damping (E, kn, kt, gamma, cn, gamma_t, mu, shape), with a margin of 2.
-        It holds for any v, theta and spin. Computed by the engine (one formula; see the
-        documentation of ``restitution_core::stability``)."""
-        return float(_dt_bounds(self)[0][0])
+        It holds for any v, theta and spin. Computed by the engine (one formula; see
+        docs/model.md, "Stability bounds")."""
+        bounds, _ = _engine.dt_bounds(_engine.columns(self.engine_values(), {}, 1), self.template_vertices())
+        return float(bounds[0])
 
     @property
     def r(self) -> float:
         """Circumradius of the particle (m)."""
         return float(self.shape.r)
-
-
-def _dt_bounds(scene: Scene, explain: bool = False) -> tuple[Any, list[str] | None]:
-    """The engine's bound (and, with ``explain``, what sets it) for a scene, as one case."""
-    from . import _core
-    from ._columns import build_columns, template_vertices
-
-    cols = build_columns(scene, {}, 1)
-    return _core.max_dt_factor_for(cols, template_vertices(scene), scene.normal_law, scene.inertia, explain)
 
 
 #: Largest accepted ``dt_factor`` per integrator for the study's preset on the exact disc,

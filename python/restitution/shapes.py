@@ -6,7 +6,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._validation import check_finite, check_int, check_positive
+from . import _core
+from ._engine import integer, real
 
 
 @dataclass(frozen=True, kw_only=False)
@@ -22,7 +23,7 @@ class Disc:
     r: float = 0.01
 
     def __post_init__(self) -> None:
-        check_positive("r", self.r)
+        _core.check_shape(0.0, real("r", self.r), 0.0)
 
     @property
     def n(self) -> int:
@@ -54,9 +55,7 @@ class RegularPolygon:
     phi0_deg: float = 0.0
 
     def __post_init__(self) -> None:
-        check_positive("r", self.r)
-        check_int("n", self.n, minimum=3)
-        check_finite("phi0_deg", self.phi0_deg)
+        _core.check_shape(float(integer("n", self.n, minimum=3)), real("r", self.r), real("phi0_deg", self.phi0_deg))
 
 
 @dataclass(frozen=True)
@@ -84,18 +83,15 @@ class ConvexPolygon:
             v = np.asarray(self.vertices, dtype=np.float64)
         except (TypeError, ValueError) as e:
             raise TypeError(f"`vertices` must be an array of shape (k, 2) of numbers ({e})") from None
-        if v.ndim != 2 or v.shape[1] != 2 or v.shape[0] < 3:
-            raise ValueError(f"require `vertices` of shape (k, 2) with k >= 3 (found shape {v.shape})")
-        if not np.all(np.isfinite(v)):
-            raise ValueError("require `vertices` finite (found NaN or inf)")
-        check_finite("phi0_deg", self.phi0_deg)
+        if v.ndim != 2 or v.shape[1] != 2:
+            raise ValueError(f"require `vertices` of shape (k, 2) (found shape {v.shape})")
+        _core.check_shape(0.0, 1.0, real("phi0_deg", self.phi0_deg))
+        # The engine checks them (at least 3, finite, distinct, counter-clockwise, strictly
+        # convex) and returns them about the centroid, scaled to circumradius 1.
+        template, r = _core.convex_template(np.ascontiguousarray(v))
         object.__setattr__(self, "vertices", tuple((float(a), float(b)) for a, b in v))
-        c = _centroid(v)
-        rel = v - c
-        r = float(np.max(np.hypot(rel[:, 0], rel[:, 1])))
-        object.__setattr__(self, "_template", np.ascontiguousarray(rel / r))
-        object.__setattr__(self, "_r", r)
-        _check_convex(v)
+        object.__setattr__(self, "_template", np.ascontiguousarray(template))
+        object.__setattr__(self, "_r", float(r))
 
     @property
     def r(self) -> float:
@@ -109,41 +105,3 @@ class ConvexPolygon:
 
 
 Shape = Disc | RegularPolygon | ConvexPolygon
-
-
-def _centroid(v: np.ndarray) -> np.ndarray:
-    # Shoelace sums about the vertex mean: about a far-away origin their terms cancel badly.
-    o = v.mean(axis=0)
-    x, y = v[:, 0] - o[0], v[:, 1] - o[1]
-    xn, yn = np.roll(x, -1), np.roll(y, -1)
-    w = x * yn - xn * y
-    a = w.sum() / 2.0
-    if a == 0.0:
-        return o
-    return o + np.array([((x + xn) * w).sum(), ((y + yn) * w).sum()]) / (6.0 * a)
-
-
-def _check_convex(v: np.ndarray) -> None:
-    k = len(v)
-    scale = float(np.max(np.hypot(v[:, 0], v[:, 1]))) or 1.0
-    for i in range(k):
-        for j in range(i + 1, k):
-            if np.hypot(*(v[i] - v[j])) <= 1e-12 * scale:
-                raise ValueError(f"require `vertices` distinct (found vertices {i} and {j} coinciding)")
-    x, y = v[:, 0], v[:, 1]
-    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-    if area <= 0.0:
-        raise ValueError("require `vertices` in counter-clockwise order (found clockwise or zero area)")
-    e0 = np.roll(v, -1, axis=0) - v
-    e1 = np.roll(e0, -1, axis=0)
-    cross = e0[:, 0] * e1[:, 1] - e0[:, 1] * e1[:, 0]
-    norms = np.hypot(e0[:, 0], e0[:, 1]) * np.hypot(e1[:, 0], e1[:, 1])
-    if np.any(cross <= 1e-12 * norms):
-        bad = int(np.argmax(cross <= 1e-12 * norms))
-        raise ValueError(
-            "require `vertices` to form a strictly convex polygon "
-            f"(found a right turn or collinear vertices at vertex {(bad + 1) % k})"
-        )
-    turning = float(np.sum(np.arctan2(cross, np.sum(e0 * e1, axis=1))))
-    if abs(turning - 2 * np.pi) > 1e-6:
-        raise ValueError(f"require `vertices` to form a simple convex polygon (found total turning {turning:.4f} rad)")

@@ -7,15 +7,14 @@ from dataclasses import dataclass, fields
 import numpy as np
 import polars as pl
 
-from . import _core
-from ._columns import RECORD_COLUMNS, build_columns, records_frame, template_vertices
-from ._validation import check_finite, check_theta
+from . import _engine
 from .scene import Scene
 
 
 @dataclass(frozen=True)
 class Record:
-    """What one impact returns (MODEL.md names). Velocities in m/s, spins in rad/s, energies in J/m."""
+    """What one impact returns (the record of docs/model.md; its columns are the engine's
+    ``RECORD_COLUMNS``, in order). Velocities in m/s, spins in rad/s, energies in J/m."""
 
     theta_deg: float
     """Impact angle from the plate (degrees; input)."""
@@ -88,16 +87,15 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"`scene` must be a restitution.Scene (found {type(scene).__name__})")
-    theta = check_theta(theta_deg)
-    omega = check_finite("omega_in", omega_in)
-    cols = build_columns(scene, {"theta_deg": np.array([theta]), "omega_in": np.array([omega])}, 1)
-    if trace:
-        raw, tr = _core.trace_case(cols, template_vertices(scene), scene.normal_law, scene.inertia,
-                                   overlap=scene.overlap)
-        trace_frame: pl.DataFrame | None = pl.DataFrame(dict(tr))
-    else:
-        raw = _core.run_cases(cols, template_vertices(scene), scene.normal_law, scene.inertia, 1,
-                               overlap=scene.overlap)
-        trace_frame = None
-    row = records_frame(raw).row(0, named=True)
-    return Record(theta_deg=theta, omega_in=omega, trace=trace_frame, **{k: row[k] for k in RECORD_COLUMNS})
+    theta = _engine.real("theta_deg", theta_deg)
+    omega = _engine.real("omega_in", omega_in)
+    cols = _engine.columns(scene.engine_values(), {"theta_deg": np.array([theta]), "omega_in": np.array([omega])}, 1)
+    try:
+        if trace:
+            raw, trace_frame = _engine.trace(cols, scene.template_vertices())
+        else:
+            raw, trace_frame = _engine.run(cols, scene.template_vertices(), 1), None
+    except _engine.RestitutionError as err:
+        raise err.at_case(None) from None  # one impact: no case to name
+    row = _engine.records_frame(raw).row(0, named=True)
+    return Record(theta_deg=theta, omega_in=omega, trace=trace_frame, **{k: row[k] for k in _engine.RECORD_COLUMNS})

@@ -23,24 +23,30 @@ what a dataset's manifest stores, so a resumed sweep can be compared key by key.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import math
-import re
-import tomllib
+import sys
 from pathlib import Path
 from typing import Any, Mapping
 
 import polars as pl
 
-from .._columns import AXES, CHOICE_AXES
+from .._engine import CHOICES
+from ..errors import RestitutionError
 from ..scene import Scene
 from ..shapes import ConvexPolygon, Disc, RegularPolygon
-from .sweep import SweepSpec, check_chunk_size
+from .sweep import AXES, SweepSpec, check_chunk_size
 
-#: [scene] keys besides ``preset`` and the ``shape`` table.
-SCENE_KEYS = ("rho", "E", "gamma", "gamma_t", "mu", "v", "integrator", "dt_factor", "normal_law", "kn", "cn", "kt",
-              "inertia")
-_STRING_KEYS = ("integrator", "normal_law", "inertia")
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # Python 3.10: the same parser, as a package
+    import tomli as tomllib
+
+#: [scene] keys besides ``preset`` and the ``shape`` table: every field of :class:`Scene`, so a
+#: new field is a key (and part of a dataset's digest) without editing this file.
+SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name != "shape")
+CHOICE_AXES = CHOICES
 PRESETS = ("default", "paper")
 SHAPE_KEYS = {"disc": ("r",), "regular_polygon": ("r", "n", "phi0_deg"), "convex_polygon": ("vertices", "phi0_deg")}
 TOP_KEYS = ("scene", "axes", "sweep")
@@ -101,23 +107,21 @@ def spec_from_dict(data: Mapping[str, Any], *, source: str = "config",
     try:
         spec = SweepSpec(scene, axes=None if cases is not None else axes, cases=cases)
     except (ValueError, TypeError) as err:
-        where = "sweep.cases" if cases is not None else _named_key("axes", str(err), axes)
+        where = "sweep.cases" if cases is not None else _named_key("axes", err, axes)
         raise fail(where, str(err)) from None
     return spec, chunk
 
 
-def _named_key(table: str, message: str, keys: Mapping[str, Any]) -> str:
-    """``table.name`` for the first backticked parameter of ``message`` that is a key there."""
-    for name in re.findall(r"`(\w+)`", message):
-        if name in keys:
-            return f"{table}.{name}"
-    return table
+def _named_key(table: str, err: Exception, keys: Mapping[str, Any]) -> str:
+    """``table.name`` when ``err`` names a parameter that is a key of ``table``, else ``table``."""
+    name = err.parameter if isinstance(err, RestitutionError) else None
+    return f"{table}.{name}" if name in keys else table
 
 
 def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
     """The spec in the config structure, fully expanded (no preset; every axis an explicit list)."""
     s = spec.scene
-    scene: dict[str, Any] = {k: getattr(s, k) if k in _STRING_KEYS else float(getattr(s, k))
+    scene: dict[str, Any] = {k: getattr(s, k) if k in CHOICES else float(getattr(s, k))
                              for k in SCENE_KEYS if getattr(s, k) is not None}
     scene["shape"] = shape_to_dict(s.shape)
     out: dict[str, Any] = {"scene": scene}
@@ -176,7 +180,7 @@ def _scene(table: dict[str, Any], fail: Any) -> Scene:
         if key not in table:
             continue
         value = table[key]
-        if key in _STRING_KEYS:
+        if key in CHOICES:
             if not isinstance(value, str):
                 raise fail(f"scene.{key}", f"require a string (found {type(value).__name__} {value!r})")
             fields[key] = value
@@ -189,7 +193,7 @@ def _scene(table: dict[str, Any], fail: Any) -> Scene:
     try:
         return Scene.paper(**fields) if preset == "paper" else Scene(**fields)
     except (ValueError, TypeError) as err:
-        raise fail(_named_key("scene", str(err), fields), str(err)) from None
+        raise fail(_named_key("scene", err, fields), str(err)) from None
 
 
 def _shape(table: dict[str, Any], fail: Any) -> Any:

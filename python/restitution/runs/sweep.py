@@ -8,7 +8,7 @@ or thread count, so the rows do not depend on either.
 
 from __future__ import annotations
 
-import re
+import itertools
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -16,19 +16,28 @@ from typing import Any
 import numpy as np
 import polars as pl
 
-from .. import _core
-from .._columns import (AXES, CHOICE_AXES, build_columns, check_combinations, records_frame, template_vertices,
-                       validate_axis)
+from .. import _engine
+from ..errors import RestitutionError
+from ..scene import ConvexPolygon, Scene
 from ._progress import Progress, want_progress
-from ..scene import INERTIAS, INTEGRATORS, NORMAL_LAWS, Scene
 
 #: Cases per engine call unless told otherwise. Each call runs on all threads with the GIL
 #: released; between calls a sweep reports progress and honours Ctrl-C. Large enough that the
 #: per-call overhead (and the idle tail while the last cases of a call finish) is negligible.
 DEFAULT_CHUNK = 8192
 
-#: Axes that the engine takes per call rather than per case: a chunk runs once per value group.
-_PER_CALL = ("normal_law", "inertia")
+#: Names accepted as sweep axes: every per-case column of the engine (``n``: the shape, 0 for
+#: an exact disc, >= 3 for a regular n-gon; a choice by its names).
+AXES: tuple[str, ...] = _engine.CASE_COLUMNS
+
+#: Axes whose values the scene's rules do not tie to other axes: the engine checks them value
+#: by value; the others are checked in every combination (the time-step bound ties dt_factor
+#: to the stiffness and damping, inertia and overlap to the shape).
+_PER_VALUE = ("theta_deg", "omega_in", "v", "phi0_deg")
+
+#: Most combinations checked before a sweep starts; beyond it each value is checked alone and
+#: the engine still refuses a bad combination when its chunk runs, naming the case.
+_CHECK_MAX = 200_000
 
 
 @dataclass(frozen=True, slots=True)
@@ -48,7 +57,7 @@ class SweepSpec:
     scene : Scene
         Values of every parameter that is not an axis.
     axes : mapping, optional
-        Axis name to a scalar or 1-D array (see :data:`restitution._columns.AXES`); the first
+        Axis name to a scalar or 1-D array (see :data:`AXES`); the first
         axis varies slowest. ``theta_deg`` is required.
     cases : polars.DataFrame, optional
         One impact per row; its columns must be axis names, ``theta_deg`` among them.
@@ -71,12 +80,37 @@ class SweepSpec:
     def _init_axes(self, axes: dict[str, Any]) -> None:
         if "theta_deg" not in axes:
             raise ValueError("`theta_deg` is required (a scalar or a 1-D array in (0, 90])")
-        self.axes = {name: validate_axis(name, values, self.scene) for name, values in axes.items()}
-        check_combinations(self.scene, self.axes, rows=False)
+        self.axes = {name: axis_values(name, values, self.scene) for name, values in axes.items()}
         lens = [len(a) for a in self.axes.values()]
         self.n_cases = int(np.prod(lens, dtype=object))  # exact, no int64 overflow for huge products
         # stride of axis k = product of the lengths after it (first axis slowest)
         self._strides = [int(np.prod(lens[k + 1:], dtype=object)) for k in range(len(lens))]
+        self._check_product()
+
+    def _check_product(self) -> None:
+        """The engine's rules on the product before it runs: every combination of the axes that
+        interact (up to _CHECK_MAX), every value of the others; an error names its case."""
+        names = list(self.axes)
+        tied = [k for k, name in enumerate(names) if name not in _PER_VALUE]
+        sizes = [len(self.axes[names[k]]) for k in tied]
+        probes: list[tuple[int, ...]] = []
+        if int(np.prod(sizes, dtype=object)) <= _CHECK_MAX:
+            for combo in itertools.product(*(range(n) for n in sizes)):
+                probe = [0] * len(names)
+                for k, j in zip(tied, combo):
+                    probe[k] = j
+                probes.append(tuple(probe))
+        for k, name in enumerate(names):
+            if name in _PER_VALUE or int(np.prod(sizes, dtype=object)) > _CHECK_MAX:
+                probes.extend(tuple(j if m == k else 0 for m in range(len(names))) for j in range(len(self.axes[name])))
+        index = np.array(probes, dtype=np.int64).reshape(len(probes), len(names))
+        per_case = {name: self.axes[name][index[:, k]] for k, name in enumerate(names)}
+        try:
+            _engine.check(_engine.columns(self.scene.engine_values(), per_case, len(probes)),
+                          self.scene.template_vertices())
+        except RestitutionError as err:
+            case = sum(int(i) * st for i, st in zip(index[err.case or 0], self._strides))
+            raise err.at_case(case) from None
 
     def _init_cases(self, cases: pl.DataFrame) -> None:
         if not isinstance(cases, pl.DataFrame):
@@ -90,12 +124,14 @@ class SweepSpec:
             raise ValueError("require `cases` with at least one row")
         self.cases = cases
         self._case_cols = {
-            name: validate_axis(name, cases[name].to_list() if name in CHOICE_AXES else cases[name].to_numpy(),
-                                self.scene)
+            name: axis_values(name, cases[name].to_list() if name in _engine.CHOICES else cases[name].to_numpy(),
+                              self.scene)
             for name in cases.columns
         }
-        check_combinations(self.scene, self._case_cols, rows=True)
         self.n_cases = cases.height
+        if self.n_cases <= _CHECK_MAX:  # beyond, each chunk is checked as it runs
+            _engine.check(_engine.columns(self.scene.engine_values(), self._case_cols, self.n_cases),
+                          self.scene.template_vertices())
 
     @property
     def axis_names(self) -> tuple[str, ...]:
@@ -105,8 +141,10 @@ class SweepSpec:
     def axis_values(self, name: str) -> list[Any]:
         """An axis' values as plain Python values (names for integrator, normal_law, inertia)."""
         a = self.axes[name]
-        if name in CHOICE_AXES:
-            return [_choice_table(name)[int(c)] for c in a]
+        if name in _engine.CHOICES:
+            return [_engine.CHOICES[name][int(c)] for c in a]
+        if name == "n":
+            return [int(c) for c in a]
         return a.tolist()
 
     def chunks(self, chunk_size: int) -> Iterator[Chunk]:
@@ -131,9 +169,11 @@ class SweepSpec:
         for (name, values), stride in zip(self.axes.items(), self._strides):
             col = values[(i // stride) % len(values)]
             per_case[name] = col
-            if name in CHOICE_AXES:
-                shown[name] = pl.Series(name, np.asarray(_choice_table(name), dtype=object)[col].tolist(),
-                                        dtype=pl.String)
+            if name in _engine.CHOICES:
+                shown[name] = pl.Series(name, np.asarray(_engine.CHOICES[name], dtype=object)[col.astype(np.int64)]
+                                        .tolist(), dtype=pl.String)
+            elif name == "n":
+                shown[name] = pl.Series(name, col.astype(np.int64))
             else:
                 shown[name] = pl.Series(name, col)
         return per_case, pl.DataFrame(shown)
@@ -141,12 +181,40 @@ class SweepSpec:
     def run(self, start: int, stop: int, threads: int = 0) -> pl.DataFrame:
         """Runs cases ``start:stop``: one row per impact, input columns then the record's."""
         per_case, shown = self.inputs(start, stop)
-        raw = run_per_case(self.scene, per_case, stop - start, threads, offset=start)
-        return pl.concat([shown, records_frame(raw)], how="horizontal")
+        cols = _engine.columns(self.scene.engine_values(), per_case, stop - start)
+        try:
+            raw = _engine.run(cols, self.scene.template_vertices(), threads)
+        except RestitutionError as err:
+            # The engine numbers the cases of this call; users need the index in the whole sweep.
+            raise err.at_case(start + (err.case or 0)) from None
+        return pl.concat([shown, _engine.records_frame(raw)], how="horizontal")
 
 
-def _choice_table(name: str) -> tuple[str, ...]:
-    return INTEGRATORS if name == "integrator" else CHOICE_AXES[name]
+def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
+    """One axis' values as the engine's float64 column (a choice's names as their codes). Checks
+    what the engine cannot: the axis exists, its values are numbers (or names) in a 1-D list."""
+    if name not in AXES:
+        raise ValueError(f"`{name}` is not a sweep axis; allowed axes: {', '.join(AXES)}")
+    if name in _engine.CHOICES:
+        vals = [values] if isinstance(values, str) else list(np.atleast_1d(np.asarray(values, dtype=object)))
+        a = np.array([_engine.code(name, v) for v in vals], dtype=np.float64)
+    elif name == "n":
+        ints = np.atleast_1d(np.asarray(values))
+        if ints.ndim != 1 or not np.issubdtype(ints.dtype, np.integer):
+            raise TypeError(f"`n` must be an integer or a 1-D array of integers (found {values!r:.80})")
+        if isinstance(scene.shape, ConvexPolygon):
+            raise ValueError("`n` is not a sweep axis for a ConvexPolygon scene (its vertices are fixed)")
+        a = ints.astype(np.float64)
+    else:
+        try:
+            a = np.atleast_1d(np.asarray(values, dtype=np.float64))
+        except (TypeError, ValueError):
+            raise TypeError(f"`{name}` must be a number or a 1-D array of numbers (found {values!r:.80})") from None
+    if a.ndim != 1:
+        raise ValueError(f"require `{name}` a scalar or 1-D array (found shape {a.shape})")
+    if a.size == 0:
+        raise ValueError(f"require `{name}` non-empty")
+    return np.ascontiguousarray(a)
 
 
 def check_chunk_size(chunk_size: Any) -> int:
@@ -168,50 +236,6 @@ def check_threads(threads: Any) -> int:
             or not 1 <= threads <= MAX_THREADS):
         raise ValueError(f"require `threads` an integer in [1, {MAX_THREADS}] (found {threads!r})")
     return int(threads)
-
-
-_CASE_PREFIX = re.compile(r"^case (\d+): ")
-
-
-def run_per_case(scene: Scene, per_case: Mapping[str, np.ndarray], n: int, threads: int,
-                 offset: int = 0) -> dict[str, np.ndarray]:
-    """Runs ``n`` cases (values per case in ``per_case``, the scene's elsewhere) in the engine.
-
-    ``normal_law`` and ``inertia`` are per call in the engine: with either as an axis, each
-    value group runs as one call and the records are put back in case order.
-    """
-    verts = template_vertices(scene)
-    if not any(k in per_case for k in _PER_CALL):
-        return _engine(scene, per_case, n, threads, verts, scene.normal_law, scene.inertia, offset, None)
-    law = per_case.get("normal_law", np.full(n, NORMAL_LAWS.index(scene.normal_law)))
-    inertia = per_case.get("inertia", np.full(n, INERTIAS.index(scene.inertia)))
-    key = np.asarray(law) * len(INERTIAS) + np.asarray(inertia)
-    out: dict[str, np.ndarray] = {}
-    for k in np.unique(key):
-        idx = np.flatnonzero(key == k)
-        sub = {name: v[idx] for name, v in per_case.items() if name not in _PER_CALL}
-        raw = _engine(scene, sub, len(idx), threads, verts, NORMAL_LAWS[k // len(INERTIAS)],
-                      INERTIAS[k % len(INERTIAS)], offset, idx)
-        for name, a in raw.items():
-            if name not in out:
-                out[name] = np.empty(n, dtype=a.dtype)
-            out[name][idx] = a
-    return out
-
-
-def _engine(scene: Scene, per_case: Mapping[str, np.ndarray], n: int, threads: int, verts: np.ndarray | None,
-            normal_law: str, inertia: str, offset: int, idx: np.ndarray | None) -> dict[str, np.ndarray]:
-    cols = build_columns(scene, per_case, n)
-    try:
-        return dict(_core.run_cases(cols, verts, normal_law, inertia, threads, overlap=scene.overlap))
-    except ValueError as err:
-        # The engine numbers cases within this call; users need the index in the whole sweep.
-        m = _CASE_PREFIX.match(str(err))
-        if m is None:
-            raise
-        i = int(m.group(1))
-        global_i = offset + (int(idx[i]) if idx is not None else i)
-        raise ValueError(f"case {global_i}: {str(err)[m.end():]}") from None
 
 
 def sweep(

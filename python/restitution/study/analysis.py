@@ -283,6 +283,8 @@ def fit_exp(x: Any, y: Any, sigma: Any = None, *, absolute_sigma: bool | None = 
     Levenberg-Marquardt; the covariance is ``(J^T W J)^-1`` at the optimum, scaled by
     chi2 / dof unless ``absolute_sigma`` (default: True when ``sigma`` is given).
 
+    Examples
+    --------
     >>> x = np.linspace(0.1, 1.0, 10)
     >>> f = fit_exp(x, 73.45 * np.exp(-5.44 * x) + 16.26)
     >>> [round(p, 6) for p in f.params]

@@ -29,7 +29,8 @@ from typing import Callable
 import numpy as np
 
 from . import theory
-from .._validation import check_theta
+from .. import _core
+from .._engine import real
 from ..scene import Scene
 from ..simulate import simulate
 
@@ -91,7 +92,8 @@ def gamma_for_e_n(scene: Scene, e_n: float, *, theta_deg: float = 90.0, tol: flo
         raise ValueError(f"require `e_n` in (0, 1) (found {e_n})")
     if not (0.0 < tol < 1e-2):
         raise ValueError(f"require `tol` in (0, 0.01) (found {tol})")
-    th = check_theta(theta_deg)
+    th = real("theta_deg", theta_deg)
+    _core.check_theta(th)
     if scene.normal_law != "area":
         raise ValueError('gamma is used by the area law only (scene has `normal_law` "linear"; calibrate `cn`)')
     target = float(e_n)
@@ -130,7 +132,8 @@ def mu_for_e_t(scene: Scene, e_t: float, theta_deg: float, *, omega_in: float = 
     >>> round(cal.value, 3)
     0.215
     """
-    th = check_theta(theta_deg)
+    th = real("theta_deg", theta_deg)
+    _core.check_theta(th)
     if th >= 90.0:
         raise ValueError("require `theta_deg` < 90 (e_T is undefined head-on)")
     target = float(e_t)

@@ -20,7 +20,7 @@ SPINS_DEG = (-50.0, -20.0, -10.0, -5.0, 0.0, 5.0, 10.0, 20.0, 50.0)
 STUDY_E_T_09 = {-50.0: [30.0, 70.0], -20.0: [30.0, 83.0], -10.0: [30.0, 85.0], -5.0: [30.0, 87.0], 0.0: [30.0],
                 5.0: [30.0], 10.0: [30.0], 20.0: [30.0], 50.0: [30.0]}
 STUDY_E_T_RANGE = (-4.17, 5.37)
-#: theta_c from rigid-body theory at mu = 1 that MODEL.md quotes, and the study's fit there.
+#: theta_c from rigid-body theory at mu = 1 that docs/model.md (section 10) quotes, and the study's fit there.
 THETA_C_MU1_MODEL = 9.95
 
 
@@ -210,7 +210,7 @@ def _report(n: dict[str, Any], theory, analysis, figures) -> str:
     tc_090 = float(theory.theta_c(1.0, 0.90))
     lo, hi = theory.e_n_for_theta_c(THETA_C_MU1_MODEL + 0.005, 1.0), theory.e_n_for_theta_c(THETA_C_MU1_MODEL - 0.005, 1.0)
     add(f"- Rigid-body theta_c (disc, no spin): tan theta_c = 1 / (3 mu (1 + e_N)). At mu = 1 it is "
-        f"{tc_090:.4f} deg for e_N = 0.90 (the preset's head-on calibration); MODEL.md's 9.95 deg is e_N = 0.90 "
+        f"{tc_090:.4f} deg for e_N = 0.90 (the preset's head-on calibration); docs/model.md's 9.95 deg is e_N = 0.90 "
         f"(any e_N in [{lo:.4f}, {hi:.4f}] rounds to it; exactly 9.95 needs e_N = "
         f"{theory.e_n_for_theta_c(THETA_C_MU1_MODEL, 1.0):.5f}).")
     if en_c1.height:

@@ -42,7 +42,7 @@ import numpy as np
 DISC = 0.5
 SPHERE = 0.4
 
-#: The study's preset (MODEL.md): radius (m) and impact speed (m/s).
+#: The study's preset (docs/model.md, section 12): radius (m) and impact speed (m/s).
 R_PAPER = 0.01
 V_PAPER = 0.0357
 
@@ -268,6 +268,8 @@ def regime_boundaries(mu: float, e_n: float, omega_in: float = 0.0, *, r: float 
                       kappa: float | str = DISC) -> list[tuple[float, str]]:
     """Every angle in (0, 90] where the regime changes, with the regime above it ("rolling"/"sliding").
 
+    Examples
+    --------
     >>> [(round(t, 2), s) for t, s in regime_boundaries(0.1, 0.9, omega_in=-0.8727)]
     [(48.06, 'rolling')]
     >>> [(round(t, 2), s) for t, s in regime_boundaries(0.01, 0.9, omega_in=-0.8727)]

@@ -15,7 +15,7 @@
 //! assert_eq!(rec.e_t, Some(1.0));
 //! ```
 //!
-//! Conventions (see MODEL.md): the plate is y = 0, the particle above it; theta is measured
+//! Conventions (docs/model.md, section 1): the plate is y = 0, the particle above it; theta is measured
 //! from the plate; spin is counter-clockwise positive; units are per unit depth.
 #![warn(missing_docs)]
 
@@ -41,8 +41,8 @@ pub use integrate::adaptive::{
 };
 pub use law::{plate_overlap, StickState};
 pub use model::{
-    check_case, check_theta, max_dt_factor, max_dt_factor_reason, scene_from_columns, sin_cos_deg,
-    ContactRates, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene, CASE_COLUMNS,
-    CHOICES,
+    check_case, check_orientation, check_theta, max_dt_factor, max_dt_factor_reason,
+    scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, InertiaModel, Initial,
+    Integrator, Model, NormalLaw, Scene, CASE_COLUMNS, CHOICES,
 };
-pub use sweep::{run_cases, Case};
+pub use sweep::{check_cases, run_cases, Case};

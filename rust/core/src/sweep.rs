@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::impact::{simulate, Record};
-use crate::model::{Initial, Scene};
+use crate::model::{check_case, Initial, Scene};
 use rayon::prelude::*;
 
 /// One impact to run.
@@ -13,6 +13,35 @@ pub struct Case {
     pub scene: Scene,
     /// The initial state at first touch.
     pub init: Initial,
+}
+
+/// Runs `work` on `threads` threads (0: rayon's default pool).
+fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
+    if threads == 0 {
+        return work();
+    }
+    match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+        Ok(pool) => pool.install(work),
+        Err(_) => work(),
+    }
+}
+
+/// Checks every rule of every case without running it ([`check_case`]), in parallel; the
+/// error of the first failing case comes with its index.
+pub fn check_cases(
+    cases: &[Case],
+    threads: usize,
+) -> std::result::Result<(), (usize, crate::Error)> {
+    let results = on_threads(threads, || {
+        cases
+            .par_iter()
+            .map(|c| check_case(&c.scene, &c.init))
+            .collect::<Vec<Result<()>>>()
+    });
+    results
+        .into_iter()
+        .enumerate()
+        .try_for_each(|(i, r)| r.map_err(|e| (i, e)))
 }
 
 /// Runs every case, in parallel over `threads` threads (0: rayon's default).
@@ -29,14 +58,7 @@ pub fn run_cases(
             .map(|c| simulate(&c.scene, &c.init))
             .collect::<Vec<Result<Record>>>()
     };
-    let results = if threads == 0 {
-        work()
-    } else {
-        match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
-            Ok(pool) => pool.install(work),
-            Err(_) => work(),
-        }
-    };
+    let results = on_threads(threads, work);
     results
         .into_iter()
         .enumerate()

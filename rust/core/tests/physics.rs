@@ -1,4 +1,4 @@
-//! Physics of one exact-disc impact against the limits of MODEL.md (issue 3): elastic limit,
+//! Physics of one exact-disc impact against the limits of docs/model.md, section 11 (issue 3): elastic limit,
 //! energy audit, sliding and rolling regimes (disc and sphere inertia), the linear law against
 //! its analytic restitution, convergence orders, Gear-5/Verlet agreement, mirror symmetry,
 //! the time-out, bad input, and the integrators' time-step bound.
@@ -198,7 +198,7 @@ fn energy_residual_shrinks_with_dt() {
 // ---------------------------------------------------------------------------------------------
 // Rigid-body limits: sliding throughout, or ending in rolling.
 
-/// MODEL.md: the impact slides throughout iff mu (1 + e_N) v_N < kappa / (1 + kappa) |v_cp|.
+/// docs/model.md, section 10: the impact slides throughout iff mu (1 + e_N) v_N < kappa / (1 + kappa) |v_cp|.
 fn slides_throughout(mu: f64, e_n: f64, init: &Initial, kappa: f64) -> bool {
     let v_cp = init.vx + R * init.omega;
     mu * (1.0 + e_n) * init.vy.abs() < kappa / (1.0 + kappa) * v_cp.abs()
@@ -267,7 +267,7 @@ fn rolling_regime_follows_rigid_body_theory() {
                 let e_t = rec.e_t.unwrap();
                 let expected = 1.0 / (1.0 + k) - k * R * omega / ((1.0 + k) * v_t);
                 // The contact point ends nearly at rest: the micro-slip oscillation left at
-                // separation (MODEL.md: +-1.3 % of e_T with gamma_t = 0.5) is a few percent
+                // separation (docs/model.md, section 5: +-1.3 % of e_T with gamma_t = 0.5) is a few percent
                 // of the incoming slip.
                 let v_cp_out = rec.vx_out + R * rec.omega_out;
                 assert!(
@@ -297,7 +297,7 @@ fn rolling_regime_follows_rigid_body_theory() {
 // ---------------------------------------------------------------------------------------------
 // Linear spring-dashpot, head-on, mu = 0.
 
-/// Unclipped restitution of the linear spring-dashpot (MODEL.md).
+/// Unclipped restitution of the linear spring-dashpot (docs/model.md, section 4.3).
 fn e_unclipped(zeta: f64) -> f64 {
     (-PI * zeta / (1.0 - zeta * zeta).sqrt()).exp()
 }
@@ -416,7 +416,7 @@ fn sequence(case: &Case, integrator: Integrator) -> Vec<Record> {
 #[test]
 fn results_converge_with_dt_at_the_expected_orders() {
     // (case, integrator) -> floor on the order of the differences of e_n / e_kin (and e_t
-    // with friction). MODEL.md: Gear-5 about 3 / 1.5 / 1, limited by the non-smooth force
+    // with friction). docs/model.md, section 7.6: Gear-5 about 2.5 / 1.5 / 1, limited by the non-smooth force
     // (delta^{3/2}, then delta^{1/2} with damping, then stick/slip switches); a broken
     // integrator (first order, or one that does not converge) fails these floors.
     let floors = [

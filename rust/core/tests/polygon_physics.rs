@@ -109,12 +109,12 @@ fn regular_ngon_converges_to_the_exact_disc() {
             );
         }
     }
-    // MODEL.md's reference |de_N| (6.2e-3, 5.3e-5, 1.1e-6 for n = 120, 480, 1920 on a
+    // The reference |de_N| of docs/model.md, section 11 (6.2e-3, 5.3e-5, 1.1e-6 for n = 120, 480, 1920 on a
     // reference kernel; 2.6e-2 at n = 30, before the asymptotic regime) sets the scale.
     for (n, reference) in [(120, 6.2e-3), (480, 5.3e-5), (1920, 1.1e-6)] {
         assert!(
             err(n)[0] < 2.0 * reference,
-            "n {n}: |de_n| {:.2e} vs MODEL.md {reference:.1e}",
+            "n {n}: |de_n| {:.2e} vs the reference {reference:.1e}",
             err(n)[0]
         );
     }
@@ -371,7 +371,7 @@ fn fixed_step_energy_error_without_friction_and_damping() {
 
 #[test]
 fn face_first_elastic_impacts_conserve_energy_at_the_default_dt() {
-    // MODEL.md: mu = 0 and gamma = 0 conserve energy for any polygon and orientation, and no
+    // docs/model.md, section 11: mu = 0 and gamma = 0 conserve energy for any polygon and orientation, and no
     // impact gains more than 1e-6 at the default dt (Gear-5 gained up to 1.1e-5 here before
     // touch and separation were located inside the step).
     for (n, face) in [(4usize, 45.0), (3, 90.0)] {

@@ -1,188 +1,97 @@
-//! `restitution._core`: the compiled part of the Python package. Thin by design: it converts
-//! NumPy columns into core cases, runs them with the GIL released, and returns NumPy columns.
-//! Validation with friendly messages lives in the Python layer; whatever slips through is
-//! still caught by the core and raised as `ValueError`.
+//! `restitution._core`: the compiled part of the Python package. Thin by design: it reads the
+//! per-case columns of the engine's one schema by name (`restitution_core::CASE_COLUMNS`),
+//! runs the cases with the GIL released and returns the record's columns by name
+//! (`restitution_core::RECORD_COLUMNS`). Every rule lives in the core; its errors become
+//! `restitution.RestitutionError` carrying the parameter, the value and the case.
 
-use numpy::{PyArray1, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods};
+use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyKeyError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{PyDict, PyTuple};
 use restitution_core as core;
 
-/// Core errors as Python exceptions: a foreign error type needs a local newtype.
+/// A core error and the case it belongs to, as a Python exception (a foreign error type needs
+/// a local newtype).
 struct PyCoreError(core::Error, Option<usize>);
 
-impl From<PyCoreError> for PyErr {
-    fn from(e: PyCoreError) -> PyErr {
-        match (e.0, e.1) {
-            (err @ core::Error::InvalidParameter { .. }, None) => {
-                PyValueError::new_err(err.to_string())
-            }
-            (err @ core::Error::InvalidParameter { .. }, Some(i)) => {
-                PyValueError::new_err(format!("case {i}: {err}"))
-            }
-        }
-    }
-}
-
-/// Names of the per-case input columns (all float64 except `n` and `integrator`, int64).
-const FLOAT_COLUMNS: [&str; 14] = [
-    "theta_deg",
-    "omega_in",
-    "v",
-    "mu",
-    "gamma",
-    "gamma_t",
-    "E",
-    "rho",
-    "r",
-    "phi0_deg",
-    "dt_factor",
-    "kn",
-    "cn",
-    "kt",
-];
-
-struct Columns<'py> {
-    floats: Vec<PyReadonlyArray1<'py, f64>>,
-    n: PyReadonlyArray1<'py, i64>,
-    integrator: PyReadonlyArray1<'py, i64>,
-}
-
-fn get<'py, T: numpy::Element>(
-    cols: &Bound<'py, PyDict>,
-    name: &str,
-) -> PyResult<PyReadonlyArray1<'py, T>> {
-    let item = cols
-        .get_item(name)?
-        .ok_or_else(|| PyKeyError::new_err(format!("missing column `{name}`")))?;
-    item.extract::<PyReadonlyArray1<'py, T>>().map_err(|_| {
-        PyValueError::new_err(format!(
-            "column `{name}` must be a 1-D contiguous {} array",
-            std::any::type_name::<T>()
-        ))
+/// The value as Python sees it: a number when the core formatted one, else the text without
+/// the quotes the core puts around names.
+fn python_value(py: Python<'_>, value: &str) -> PyResult<Py<PyAny>> {
+    Ok(match value.parse::<f64>() {
+        Ok(x) => x.into_pyobject(py)?.into_any().unbind(),
+        Err(_) => value
+            .trim_matches('"')
+            .into_pyobject(py)?
+            .into_any()
+            .unbind(),
     })
 }
 
-fn parse_shape(n: i64, r: f64, vertices: Option<&[[f64; 2]]>) -> core::Result<core::Shape> {
-    match (n, vertices) {
-        (_, Some(v)) => {
-            // Scale the template to circumradius r (the template itself has circumradius 1).
-            let scaled: Vec<[f64; 2]> = v.iter().map(|p| [p[0] * r, p[1] * r]).collect();
-            core::Shape::convex_polygon(&scaled)
-        }
-        (0, None) => core::Shape::disc(r),
-        (n, None) if n >= 3 => core::Shape::regular_polygon(r, n as usize),
-        (n, None) => Err(core::Error::invalid(
-            "n",
-            n,
-            ">= 3 (or 0 for an exact disc)",
-        )),
+impl From<PyCoreError> for PyErr {
+    fn from(PyCoreError(err, case): PyCoreError) -> PyErr {
+        let core::Error::InvalidParameter {
+            name,
+            value,
+            expected,
+        } = &err;
+        Python::attach(|py| {
+            let class = py
+                .import("restitution.errors")?
+                .getattr("RestitutionError")?;
+            let args = (name, python_value(py, value)?, expected, case);
+            Ok::<_, PyErr>(PyErr::from_value(class.call1(args)?))
+        })
+        .unwrap_or_else(|e| e)
     }
 }
 
-fn parse_integrator(code: i64) -> core::Result<core::Integrator> {
-    match code {
-        0 => Ok(core::Integrator::Gear5),
-        1 => Ok(core::Integrator::Verlet),
-        2 => Ok(core::Integrator::Reference),
-        c => Err(core::Error::invalid(
-            "integrator",
-            c,
-            "code 0 (gear5), 1 (verlet) or 2 (reference)",
-        )),
-    }
-}
-
-fn build_cases(
-    cols: &Columns,
-    vertices: Option<&[[f64; 2]]>,
-    normal_law: &str,
-    inertia: &str,
-) -> Result<Vec<core::Case>, PyCoreError> {
-    let f: Vec<&[f64]> = cols
-        .floats
+/// The cases of `columns` (a dict of equal-length float64 arrays, one per name of
+/// `CASE_COLUMNS`), with the unit-circumradius `vertices` of a convex polygon if any.
+fn read_cases(
+    columns: &Bound<'_, PyDict>,
+    vertices: Option<PyReadonlyArray2<'_, f64>>,
+) -> PyResult<Vec<core::Case>> {
+    let arrays = core::CASE_COLUMNS
         .iter()
-        .map(|a| a.as_slice().expect("checked contiguous"))
+        .map(|name| column(columns, name))
+        .collect::<PyResult<Vec<_>>>()?;
+    let slices: Vec<&[f64]> = arrays
+        .iter()
+        .map(|a| a.as_slice().expect("checked"))
         .collect();
-    let n = cols.n.as_slice().expect("checked contiguous");
-    let integ = cols.integrator.as_slice().expect("checked contiguous");
-    let len = n.len();
-    let inertia = match inertia {
-        "shape" => core::InertiaModel::Shape,
-        "sphere" => core::InertiaModel::Sphere,
-        other => {
-            return Err(PyCoreError(
-                core::Error::invalid("inertia", format!("{other:?}"), "\"shape\" or \"sphere\""),
-                None,
-            ))
-        }
-    };
+    let len = slices[0].len();
+    if let Some(bad) = slices.iter().position(|s| s.len() != len) {
+        return Err(PyValueError::new_err(format!(
+            "column `{}` has length {} (expected {len}, as `{}`)",
+            core::CASE_COLUMNS[bad],
+            slices[bad].len(),
+            core::CASE_COLUMNS[0]
+        )));
+    }
+    let vertices = read_vertices(vertices)?;
     (0..len)
         .map(|i| {
-            let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt] =
-                std::array::from_fn(|k| f[k][i]);
-            let build = || -> core::Result<core::Case> {
-                let law = match normal_law {
-                    "area" => core::NormalLaw::Area,
-                    "linear" => core::NormalLaw::Linear { kn, cn },
-                    other => {
-                        return Err(core::Error::invalid(
-                            "normal_law",
-                            format!("{other:?}"),
-                            "\"area\" or \"linear\"",
-                        ))
-                    }
-                };
-                let scene = core::Scene {
-                    shape: parse_shape(n[i], r, vertices)?,
-                    rho,
-                    e_modulus: e,
-                    gamma,
-                    gamma_t,
-                    mu,
-                    kt: (!kt.is_nan()).then_some(kt),
-                    normal_law: law,
-                    inertia,
-                    integrator: parse_integrator(integ[i])?,
-                    dt_factor: dtf,
-                    overlap: core::OverlapMethod::Auto,
-                };
-                Ok(core::Case {
-                    scene,
-                    init: core::Initial::from_angle(v, theta, omega, phi0),
-                })
-            };
-            build().map_err(|e| PyCoreError(e, Some(i)))
+            let row = std::array::from_fn(|k| slices[k][i]);
+            core::scene_from_columns(&row, vertices.as_deref())
+                .map(|(scene, init)| core::Case { scene, init })
+                .map_err(|e| PyCoreError(e, Some(i)).into())
         })
         .collect()
 }
 
-fn read_columns<'py>(cols: &Bound<'py, PyDict>) -> PyResult<Columns<'py>> {
-    let floats = FLOAT_COLUMNS
-        .iter()
-        .map(|name| get::<f64>(cols, name))
-        .collect::<PyResult<Vec<_>>>()?;
-    let n = get::<i64>(cols, "n")?;
-    let integrator = get::<i64>(cols, "integrator")?;
-    let len = n.len();
-    for (name, a) in FLOAT_COLUMNS.iter().zip(&floats) {
-        if a.len() != len || a.as_slice().is_err() {
-            return Err(PyValueError::new_err(format!(
-                "column `{name}` must be contiguous with length {len}"
-            )));
-        }
-    }
-    if integrator.len() != len || n.as_slice().is_err() || integrator.as_slice().is_err() {
+fn column<'py>(cols: &Bound<'py, PyDict>, name: &str) -> PyResult<PyReadonlyArray1<'py, f64>> {
+    let item = cols
+        .get_item(name)?
+        .ok_or_else(|| PyKeyError::new_err(format!("missing column `{name}`")))?;
+    let array = item.extract::<PyReadonlyArray1<'py, f64>>().map_err(|_| {
+        PyValueError::new_err(format!("column `{name}` must be a 1-D float64 array"))
+    })?;
+    if array.as_slice().is_err() {
         return Err(PyValueError::new_err(format!(
-            "columns `n` and `integrator` must be contiguous with length {len}"
+            "column `{name}` must be contiguous"
         )));
     }
-    Ok(Columns {
-        floats,
-        n,
-        integrator,
-    })
+    Ok(array)
 }
 
 fn read_vertices(vertices: Option<PyReadonlyArray2<'_, f64>>) -> PyResult<Option<Vec<[f64; 2]>>> {
@@ -202,90 +111,104 @@ fn read_vertices(vertices: Option<PyReadonlyArray2<'_, f64>>) -> PyResult<Option
     ))
 }
 
+/// The records as columns named by `RECORD_COLUMNS`; an optional value also gets a boolean
+/// column `<name>_valid` (false where it is undefined, its value column then holds 0).
 fn records_to_dict<'py>(py: Python<'py>, recs: &[core::Record]) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    macro_rules! col {
-        ($name:literal, $f:expr) => {
-            out.set_item($name, PyArray1::from_vec(py, recs.iter().map($f).collect()))?;
-        };
+    let cells: Vec<_> = recs.iter().map(core::Record::cells).collect();
+    for (k, name) in core::RECORD_COLUMNS.iter().enumerate() {
+        let first = cells.first().map(|c| c[k]);
+        match first.unwrap_or(core::Cell::F64(0.0)) {
+            core::Cell::F64(_) => out.set_item(name, floats(py, &cells, k))?,
+            core::Cell::Opt(_) => {
+                out.set_item(name, floats(py, &cells, k))?;
+                let valid = cells
+                    .iter()
+                    .map(|c| matches!(c[k], core::Cell::Opt(Some(_))));
+                out.set_item(format!("{name}_valid"), PyArray1::from_iter(py, valid))?;
+            }
+            core::Cell::Int(_) => out.set_item(
+                name,
+                PyArray1::from_iter(
+                    py,
+                    cells.iter().map(|c| match c[k] {
+                        core::Cell::Int(n) => n as i64,
+                        _ => 0,
+                    }),
+                ),
+            )?,
+            core::Cell::Bool(_) => out.set_item(
+                name,
+                PyArray1::from_iter(
+                    py,
+                    cells.iter().map(|c| matches!(c[k], core::Cell::Bool(true))),
+                ),
+            )?,
+        }
     }
-    col!("e_n", |r| r.e_n);
-    col!("e_t", |r| r.e_t.unwrap_or(0.0));
-    col!("e_t_valid", |r| r.e_t.is_some());
-    col!("e_kin", |r| r.e_kin);
-    col!("omega_out", |r| r.omega_out);
-    col!("beta", |r| r.beta.unwrap_or(0.0));
-    col!("beta_valid", |r| r.beta.is_some());
-    col!("rebound_angle_deg", |r| r.rebound_angle_deg);
-    col!("vx_out", |r| r.vx_out);
-    col!("vy_out", |r| r.vy_out);
-    col!("contact_time", |r| r.contact_time);
-    col!("steps", |r| r.steps as i64);
-    col!("contacts", |r| r.contacts as i64);
-    col!("max_depth", |r| r.max_depth);
-    col!("max_area", |r| r.max_area);
-    col!("slip_events", |r| r.slip_events as i64);
-    col!("energy_in", |r| r.energy_in);
-    col!("energy_out", |r| r.energy_out);
-    col!("work_normal", |r| r.work_normal);
-    col!("work_friction", |r| r.work_friction);
-    col!("energy_residual", |r| r.energy_residual);
-    col!("separated", |r| r.separated);
-    col!("timed_out", |r| r.timed_out);
     Ok(out)
 }
 
-/// Applies the overlap path ("auto", "halfplane" or "parry") to every case; parry is
-/// refused for a disc.
-fn set_overlap(cases: &mut [core::Case], name: &str) -> Result<(), PyCoreError> {
-    let method = core::OverlapMethod::from_name(name).map_err(|e| PyCoreError(e, None))?;
-    for (i, case) in cases.iter_mut().enumerate() {
-        method
-            .check_shape(&case.scene.shape)
-            .map_err(|e| PyCoreError(e, Some(i)))?;
-        case.scene.overlap = method;
-    }
-    Ok(())
+fn floats<'py>(
+    py: Python<'py>,
+    cells: &[[core::Cell; core::RECORD_COLUMNS.len()]],
+    k: usize,
+) -> Bound<'py, PyArray1<f64>> {
+    PyArray1::from_iter(
+        py,
+        cells.iter().map(|c| match c[k] {
+            core::Cell::F64(x) | core::Cell::Opt(Some(x)) => x,
+            _ => 0.0,
+        }),
+    )
 }
 
-/// Runs one impact per row of `columns` (a dict of equal-length 1-D arrays) in parallel on
-/// `threads` threads (0: all cores) with the GIL released. Returns a dict of result columns.
+/// Runs one impact per row of `columns` in parallel on `threads` threads (0: all cores) with
+/// the GIL released. Returns the record columns.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, normal_law, inertia, threads, overlap="auto"))]
+#[pyo3(signature = (columns, vertices, threads))]
 fn run_cases<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
-    normal_law: &str,
-    inertia: &str,
     threads: usize,
-    overlap: &str,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let cols = read_columns(columns)?;
-    let vertices = read_vertices(vertices)?;
-    let mut cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
-    set_overlap(&mut cases, overlap)?;
+    let cases = read_cases(columns, vertices)?;
     let recs = py
         .detach(|| core::run_cases(&cases, threads))
         .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
     records_to_dict(py, &recs)
 }
 
+/// Checks every rule of every case of `columns` without running it (in parallel, GIL
+/// released); raises `RestitutionError` naming the first bad case.
+#[pyfunction]
+#[pyo3(signature = (columns, vertices, threads=0))]
+fn check_cases<'py>(
+    py: Python<'py>,
+    columns: &Bound<'py, PyDict>,
+    vertices: Option<PyReadonlyArray2<'py, f64>>,
+    threads: usize,
+) -> PyResult<()> {
+    let cases = read_cases(columns, vertices)?;
+    py.detach(|| core::check_cases(&cases, threads))
+        .map_err(|(i, e)| PyCoreError(e, Some(i)).into())
+}
+
+/// Trace columns, in the order `trace_case` returns them.
+const TRACE_COLUMNS: [&str; 13] = [
+    "t", "x", "y", "phi", "vx", "vy", "omega", "f_n", "f_t", "area", "depth", "xi", "stick",
+];
+
 /// Runs the single case in `columns` (length 1) and returns (record columns, trace columns).
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, normal_law, inertia, overlap="auto"))]
+#[pyo3(signature = (columns, vertices))]
 fn trace_case<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
-    normal_law: &str,
-    inertia: &str,
-    overlap: &str,
 ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
-    let cols = read_columns(columns)?;
-    let vertices = read_vertices(vertices)?;
-    let mut cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
-    set_overlap(&mut cases, overlap)?;
+    let cases = read_cases(columns, vertices)?;
     let [case] = cases.as_slice() else {
         return Err(PyValueError::new_err(format!(
             "trace_case takes exactly one case (found {})",
@@ -294,70 +217,110 @@ fn trace_case<'py>(
     };
     let (rec, tr) = py
         .detach(|| core::simulate_with_trace(&case.scene, &case.init))
-        .map_err(|e| PyCoreError(e, None))?;
+        .map_err(|e| PyCoreError(e, Some(0)))?;
     let out = PyDict::new(py);
-    for (name, col) in [
-        ("t", tr.t),
-        ("x", tr.x),
-        ("y", tr.y),
-        ("phi", tr.phi),
-        ("vx", tr.vx),
-        ("vy", tr.vy),
-        ("omega", tr.omega),
-        ("f_n", tr.f_n),
-        ("f_t", tr.f_t),
-        ("area", tr.area),
-        ("depth", tr.depth),
-        ("xi", tr.xi),
-    ] {
+    let floats = [
+        tr.t, tr.x, tr.y, tr.phi, tr.vx, tr.vy, tr.omega, tr.f_n, tr.f_t, tr.area, tr.depth, tr.xi,
+    ];
+    for (name, col) in TRACE_COLUMNS.iter().zip(floats) {
         out.set_item(name, PyArray1::from_vec(py, col))?;
     }
-    out.set_item("stick", PyArray1::from_vec(py, tr.stick))?;
+    out.set_item(TRACE_COLUMNS[12], PyArray1::from_vec(py, tr.stick))?;
     Ok((records_to_dict(py, &[rec])?, out))
 }
 
 /// Largest `dt_factor` each case of `columns` accepts: its integrator's stability bound for
-/// that case's stiffness and damping (`restitution_core::max_dt_factor`; the column
-/// `dt_factor` itself is ignored). With `explain`, also what sets each bound, in words.
-/// Invalid other parameters raise `ValueError` naming the case.
+/// that case's stiffness and damping (the column `dt_factor` itself is ignored). With
+/// `explain`, also what sets each bound, in words.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, normal_law, inertia, explain=false))]
+#[pyo3(signature = (columns, vertices, explain=false))]
 fn max_dt_factor_for<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
-    normal_law: &str,
-    inertia: &str,
     explain: bool,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, Option<Vec<String>>)> {
-    let cols = read_columns(columns)?;
-    let vertices = read_vertices(vertices)?;
-    let cases = build_cases(&cols, vertices.as_deref(), normal_law, inertia)?;
+    let cases = read_cases(columns, vertices)?;
     let mut bounds = Vec::with_capacity(cases.len());
     let mut reasons = Vec::new();
     for (i, case) in cases.iter().enumerate() {
+        let err = |e| PyCoreError(e, Some(i));
         if explain {
-            let (b, why) =
-                core::max_dt_factor_reason(&case.scene).map_err(|e| PyCoreError(e, Some(i)))?;
+            let (b, why) = core::max_dt_factor_reason(&case.scene).map_err(err)?;
             bounds.push(b);
             reasons.push(why);
         } else {
-            bounds.push(core::max_dt_factor(&case.scene).map_err(|e| PyCoreError(e, Some(i)))?);
+            bounds.push(core::max_dt_factor(&case.scene).map_err(err)?);
         }
     }
     Ok((PyArray1::from_vec(py, bounds), explain.then_some(reasons)))
+}
+
+/// Checks a shape given by its sweep columns: `n` (0: exact disc, >= 3: regular n-gon), its
+/// circumradius `r` and its orientation `phi0_deg`.
+#[pyfunction]
+fn check_shape(n: f64, r: f64, phi0_deg: f64) -> PyResult<()> {
+    core::shape_from_columns(n, r, None).map_err(|e| PyCoreError(e, None))?;
+    core::check_orientation(phi0_deg).map_err(|e| PyCoreError(e, None).into())
+}
+
+/// Checks an impact angle (degrees from the plate): the engine's one rule for it.
+#[pyfunction]
+fn check_theta(theta_deg: f64) -> PyResult<()> {
+    core::check_theta(theta_deg).map_err(|e| PyCoreError(e, None).into())
+}
+
+/// A convex polygon's vertices (counter-clockwise, any origin), checked by the engine, as
+/// (the body-frame vertices about the centroid divided by the circumradius, the circumradius).
+#[pyfunction]
+fn convex_template<'py>(
+    py: Python<'py>,
+    vertices: PyReadonlyArray2<'py, f64>,
+) -> PyResult<(Bound<'py, PyArray2<f64>>, f64)> {
+    let v = read_vertices(Some(vertices))?.unwrap_or_default();
+    let shape = core::Shape::convex_polygon(&v).map_err(|e| PyCoreError(e, None))?;
+    let r = shape.circumradius();
+    let rows: Vec<Vec<f64>> = shape
+        .vertices()
+        .iter()
+        .map(|p| vec![p.x / r, p.y / r])
+        .collect();
+    Ok((PyArray2::from_vec2(py, &rows)?, r))
+}
+
+/// The engine's choices as a dict: name -> tuple of public names in code order.
+fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let out = PyDict::new(py);
+    for (name, names) in core::CHOICES {
+        out.set_item(name, PyTuple::new(py, names)?)?;
+    }
+    Ok(out)
 }
 
 /// The compiled engine of the `restitution` package.
 #[pymodule]
 mod _core {
     #[pymodule_export]
-    use super::{max_dt_factor_for, run_cases, trace_case};
+    use super::{
+        check_cases, check_shape, check_theta, convex_template, max_dt_factor_for, run_cases,
+        trace_case,
+    };
 
     #[pymodule_init]
     fn init(m: &pyo3::Bound<'_, pyo3::types::PyModule>) -> pyo3::PyResult<()> {
-        use pyo3::types::PyModuleMethods;
+        use pyo3::types::{PyModuleMethods, PyTuple};
+        let py = m.py();
         m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+        m.add(
+            "CASE_COLUMNS",
+            PyTuple::new(py, restitution_core::CASE_COLUMNS)?,
+        )?;
+        m.add(
+            "RECORD_COLUMNS",
+            PyTuple::new(py, restitution_core::RECORD_COLUMNS)?,
+        )?;
+        m.add("TRACE_COLUMNS", PyTuple::new(py, super::TRACE_COLUMNS)?)?;
+        m.add("CHOICES", super::choices(py)?)?;
         Ok(())
     }
 }

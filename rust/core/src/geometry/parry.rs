@@ -18,7 +18,7 @@
 //!
 //! Area and centroid come from the shoelace sums relative to the first overlap vertex, the
 //! chord is the segment between the two points where the boundaries cross, and the contact
-//! normal is perpendicular to it (MODEL.md).
+//! normal is perpendicular to it (docs/model.md, section 3).
 
 use crate::error::Result;
 use crate::geometry::shape::{validate_convex, Overlap, Polygon};

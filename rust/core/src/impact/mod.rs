@@ -1,4 +1,4 @@
-//! One impact, from first touch to separation: the record of MODEL.md and an optional trace.
+//! One impact, from first touch to separation: the record (docs/model.md, section 9) and an optional trace.
 
 use crate::error::{Error, Result};
 use crate::geometry::Shape;
@@ -255,7 +255,7 @@ fn integrate_on<S: Stepper, G: PlateGeometry>(
     let (mut in_contact, mut contact_start, mut prev_depth) = (true, 0.0, 0.0);
     // Polygons: steps located on events and refined where the force changes within a step
     // (see `events`), only without friction: with it the stick/slip switches bound the fixed-step integrators
-    // to first order anyway (MODEL.md), and the restarts and refined steps measured no better
+    // to first order anyway (docs/model.md, section 7.6), and the restarts and refined steps measured no better
     // e_n while they disturbed the energy balance of frictional spinning polygons (its
     // residual rose from ~1e-7 to ~2e-6 at the default step), so those keep the plain steps.
     let events = G::EVENTS && model.scene.mu == 0.0;

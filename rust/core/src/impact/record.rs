@@ -10,7 +10,7 @@ use crate::model::{Initial, Model, NormalLaw};
 /// A contact that has not ended after this many estimated contact times is stopped.
 pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
 
-/// What one impact returns (public names of MODEL.md).
+/// What one impact returns (public names; definitions in docs/model.md, section 9).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Record {
     /// Normal restitution -vy' / vy.

@@ -5,7 +5,7 @@ pub mod scene;
 pub mod stability;
 
 pub use scene::{
-    check_case, check_theta, scene_from_columns, sin_cos_deg, InertiaModel, Initial, Integrator,
-    Model, NormalLaw, Scene, CASE_COLUMNS, CHOICES,
+    check_case, check_orientation, check_theta, scene_from_columns, shape_from_columns,
+    sin_cos_deg, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene, CASE_COLUMNS, CHOICES,
 };
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

@@ -84,7 +84,7 @@ pub const MAX_RIM_SPEED: f64 = 1e6;
 
 /// Everything that defines an impact except the initial velocity and spin.
 ///
-/// `Scene::default()` is the study's preset on an exact disc (MODEL.md).
+/// `Scene::default()` is the study's preset on an exact disc (docs/model.md, section 12).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
     /// Particle shape (default: exact disc, r = 0.01 m).
@@ -351,6 +351,11 @@ pub fn check_theta(theta_deg: f64) -> Result<()> {
     Ok(())
 }
 
+/// The orientation's rule, written once: any finite angle (degrees).
+pub fn check_orientation(phi0_deg: f64) -> Result<()> {
+    finite("phi0_deg", phi0_deg)
+}
+
 /// The index a choice column holds, checked against the names of [`CHOICES`].
 fn choice(name: &str, code: f64) -> Result<usize> {
     let names = CHOICES
@@ -378,7 +383,7 @@ fn optional(value: f64) -> Option<f64> {
 
 /// The particle's shape from the columns `n` (0: exact disc, >= 3: regular n-gon) and `r`,
 /// or from unit-circumradius `vertices` scaled by `r` (then `n` is ignored).
-fn shape_from_columns(n: f64, r: f64, vertices: Option<&[[f64; 2]]>) -> Result<Shape> {
+pub fn shape_from_columns(n: f64, r: f64, vertices: Option<&[[f64; 2]]>) -> Result<Shape> {
     if let Some(v) = vertices {
         positive("r", r)?;
         let scaled: Vec<[f64; 2]> = v.iter().map(|p| [p[0] * r, p[1] * r]).collect();
@@ -409,7 +414,10 @@ pub fn scene_from_columns(
     check_theta(theta)?;
     positive("v", v)?;
     finite("omega_in", omega)?;
-    finite("phi0_deg", phi0)?;
+    check_orientation(phi0)?;
+    // Set or not, whatever the law: a value the scene ignores must still be a valid one.
+    optional(kn).map_or(Ok(()), |k| positive("kn", k))?;
+    optional(cn).map_or(Ok(()), |c| non_negative("cn", c))?;
     let stiffness = optional(kn).unwrap_or(e);
     let normal_law = match choice("normal_law", law)? {
         0 => NormalLaw::Area,

@@ -4,12 +4,12 @@
 //!
 //! Why: the fixed-step integrators step across the non-smooth points of the law (touch and
 //! separation, a polygon corner crossing the plate, the normal-force clip switching on or off,
-//! stick <-> slip), so their error falls only like dt^1 ... dt^3 (MODEL.md, Time integration).
+//! stick <-> slip), so their error falls only like dt^1 ... dt^3 (docs/model.md, section 7.6).
 //! Between those points the law is smooth, and a 5th-order method with error control converges
 //! at its full order there; locating each switch as a root of a continuous event function keeps
 //! the whole impact accurate to about the tolerance.
 //!
-//! The continuous-time law is the dt -> 0 limit of the discrete rule of MODEL.md:
+//! The continuous-time law is the dt -> 0 limit of the discrete rule of docs/model.md (sections 4, 5):
 //! - Normal force: as in [`crate::law`], clipped to zero while F_el + F_d < 0.
 //! - Cundall-Strack spring: while sticking dxi/dt = v_t and F_t = -k_t xi - c_t v_t with
 //!   |F_t| <= mu F_n; while slipping F_t = mu F_n s (s the sign of the trial force) and the spring

@@ -1,0 +1,106 @@
+"""The engine seen from Python: its one schema and its one validator.
+
+The compiled engine names every per-case input column (``CASE_COLUMNS``), every record column
+(``RECORD_COLUMNS``) and every choice (``CHOICES``); this module uses those names, never a
+copy of them. Every rule on values lives in the engine (``_core.check_cases``, and again when a
+case runs); Python checks only what the engine cannot know: that a value is a number at all,
+and that a choice's name exists (the engine takes its index).
+"""
+
+from __future__ import annotations
+
+import numbers
+from typing import Any, Mapping
+
+import numpy as np
+import polars as pl
+
+from . import _core
+from .errors import RestitutionError
+
+#: Per-case input columns, in the engine's order (all float64; a choice holds its code).
+CASE_COLUMNS: tuple[str, ...] = tuple(_core.CASE_COLUMNS)
+#: Record columns, in output order.
+RECORD_COLUMNS: tuple[str, ...] = tuple(_core.RECORD_COLUMNS)
+#: Per-step trace columns.
+TRACE_COLUMNS: tuple[str, ...] = tuple(_core.TRACE_COLUMNS)
+#: Every choice: name -> its public names, in code order.
+CHOICES: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.CHOICES.items()}
+#: Optional parameters: None in Python, NaN ("unset") in the engine's columns; their range.
+OPTIONAL = {"kn": "> 0", "cn": ">= 0", "kt": "> 0"}
+
+
+def real(name: str, value: Any) -> float:
+    """A real number (bool excluded) as float; the engine checks its range."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"`{name}` must be a real number (found {type(value).__name__} {value!r})")
+    return float(value)
+
+
+def optional(name: str, value: Any) -> float:
+    """An optional parameter: None is the engine's NaN ("unset"), so an explicit NaN is refused."""
+    if value is None:
+        return float("nan")
+    x = real(name, value)
+    if x != x:
+        raise RestitutionError(name, x, f"finite and {OPTIONAL[name]}, or None for the default")
+    return x
+
+
+def integer(name: str, value: Any, minimum: int) -> int:
+    """An integer >= ``minimum`` (the shapes' counts, which Python builds before the engine)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"`{name}` must be an integer (found {type(value).__name__} {value!r})")
+    if int(value) < minimum:
+        raise RestitutionError(name, value, f">= {minimum}")
+    return int(value)
+
+
+def code(name: str, value: Any) -> int:
+    """The engine's code of a choice's name."""
+    names = CHOICES[name]
+    if not isinstance(value, str) or value not in names:
+        raise RestitutionError(name, repr(value), "one of " + ", ".join(f'"{c}"' for c in names))
+    return names.index(value)
+
+
+def columns(base: Mapping[str, float], per_case: Mapping[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
+    """Engine columns of length ``n``: per-case arrays where given, ``base`` values elsewhere."""
+    out = {}
+    for name in CASE_COLUMNS:
+        v = per_case.get(name)
+        out[name] = (np.ascontiguousarray(v, dtype=np.float64) if v is not None
+                     else np.full(n, base[name], dtype=np.float64))
+    return out
+
+
+def check(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None) -> None:
+    """Every rule of every case, without running it: raises :class:`RestitutionError` naming
+    the parameter, its value and the case (the row of ``cols``)."""
+    _core.check_cases(cols, vertices)
+
+
+def run(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None, threads: int) -> dict[str, np.ndarray]:
+    """Runs one impact per row (GIL released); the record columns."""
+    return dict(_core.run_cases(cols, vertices, threads))
+
+
+def trace(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None) -> tuple[dict[str, np.ndarray], pl.DataFrame]:
+    """Runs the single case in ``cols``: (record columns, per-step trace frame)."""
+    raw, tr = _core.trace_case(cols, vertices)
+    return dict(raw), pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
+
+
+def dt_bounds(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None,
+              explain: bool = False) -> tuple[np.ndarray, list[str] | None]:
+    """Each case's largest ``dt_factor`` (one formula, in the engine); with ``explain``, what sets it."""
+    return _core.max_dt_factor_for(cols, vertices, explain)
+
+
+def records_frame(raw: Mapping[str, np.ndarray]) -> pl.DataFrame:
+    """Record columns as a polars frame; an undefined value (``<name>_valid`` false) is null, never NaN."""
+    frame = pl.DataFrame({name: raw[name] for name in RECORD_COLUMNS})
+    optional = [name for name in RECORD_COLUMNS if f"{name}_valid" in raw]
+    return frame.with_columns(
+        pl.when(pl.Series(raw[f"{name}_valid"])).then(pl.col(name)).otherwise(None).alias(name) for name in optional
+    )
