@@ -1,7 +1,7 @@
 """The study's Fig. 2: e_N, e_T and e_kin against the impact angle for mu = 0, 0.1 ... 1, and for
 mu = 0 and 1 with half and double the normal damping; rigid-body theory dashed.
 
-Run: python examples/fig2_restitution.py [--disc] [--out DIR]
+Run: python examples/fig2_restitution.py [--disc] [--out DIR] [--quick]
 (the study's 120-gon by default, about 20 s on two cores; --disc: an exact disc, a second)
 """
 
@@ -17,10 +17,11 @@ from restitution.study import analysis, figures
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("--disc", action="store_true", help="exact disc instead of the 120-gon")
 ap.add_argument("--out", type=Path, default=Path("results"))
+ap.add_argument("--quick", action="store_true", help="a 2-degree theta grid (seconds; what the tests run)")
 args = ap.parse_args()
 
 scene = rs.Scene.paper(shape=rs.Disc(r=0.01)) if args.disc else rs.Scene.paper()
-theta = np.arange(4.0, 89.0 + 1e-9, 0.5)
+theta = np.arange(4.0, 89.0 + 1e-9, 2.0 if args.quick else 0.5)
 mus = np.round(np.linspace(0.0, 1.0, 11), 10)
 df = rs.sweep(scene, theta_deg=theta, mu=mus)
 gammas = [scene.gamma / 2, scene.gamma * 2]

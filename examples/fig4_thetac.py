@@ -1,7 +1,7 @@
 """The study's Fig. 4: theta_c and e_kin,min against mu, fitted with a exp(-b mu) + c, beside the
 study's fits and rigid-body theory; prints both sets of parameters and flags 2-sigma differences.
 
-Run: python examples/fig4_thetac.py [--disc] [--out DIR]
+Run: python examples/fig4_thetac.py [--disc] [--out DIR] [--quick]
 """
 
 import argparse
@@ -15,11 +15,12 @@ from restitution.study import analysis, figures
 ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 ap.add_argument("--disc", action="store_true", help="exact disc instead of the 120-gon")
 ap.add_argument("--out", type=Path, default=Path("results"))
+ap.add_argument("--quick", action="store_true", help="a 2-degree theta grid (seconds; what the tests run)")
 args = ap.parse_args()
 
 scene = rs.Scene.paper(shape=rs.Disc(r=0.01)) if args.disc else rs.Scene.paper()
 mus = np.round(np.arange(0.1, 1.0 + 1e-9, 0.1), 10)  # the study's friction coefficients
-df = rs.sweep(scene, theta_deg=np.round(np.arange(4.0, 89.0 + 1e-9, 0.25), 10), mu=mus)
+df = rs.sweep(scene, theta_deg=np.round(np.arange(4.0, 89.0 + 1e-9, 2.0 if args.quick else 0.25), 10), mu=mus)
 crit = analysis.critical_angles(df, r=scene.r, v=scene.v).sort("mu")  # refined between grid points
 fits = {q: analysis.fit_exp(crit["mu"].to_numpy(), crit[q].to_numpy()) for q in ("theta_c", "e_kin_min")}
 

@@ -2,7 +2,7 @@
 example e_T = 0.9 (+- 0.01): about 28 deg for every spin at mu = 0.1, and steep angles (70 ... 88 deg)
 for forward spin at any mu.
 
-Run: python examples/inverse_map.py [--value 0.9] [--tol 0.01] [--quantity e_t] [--disc] [--out DIR]
+Run: python examples/inverse_map.py [--value 0.9] [--tol 0.01] [--quantity e_t] [--disc] [--out DIR] [--quick]
 """
 
 import argparse
@@ -20,11 +20,12 @@ ap.add_argument("--value", type=float, default=0.9)
 ap.add_argument("--tol", type=float, default=0.01)
 ap.add_argument("--disc", action="store_true", help="exact disc instead of the 120-gon")
 ap.add_argument("--out", type=Path, default=Path("results"))
+ap.add_argument("--quick", action="store_true", help="a 2-degree theta grid (seconds; what the tests run)")
 args = ap.parse_args()
 
 scene = rs.Scene.paper(shape=rs.Disc(r=0.01)) if args.disc else rs.Scene.paper()
 spins_deg = np.array([-50.0, -20.0, -10.0, -5.0, 0.0, 5.0, 10.0, 20.0, 50.0])
-df = rs.sweep(scene, theta_deg=np.arange(4.0, 89.0 + 1e-9, 0.5), mu=[0.1, 1.0], omega_in=np.radians(spins_deg))
+df = rs.sweep(scene, theta_deg=np.arange(4.0, 89.0 + 1e-9, 2.0 if args.quick else 0.5), mu=[0.1, 1.0], omega_in=np.radians(spins_deg))
 
 sol = inverse.find(df, args.quantity, args.value, tol=args.tol)
 with pl.Config(tbl_rows=50):

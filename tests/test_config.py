@@ -3,6 +3,8 @@ value or range stops with one line naming the key and what is allowed (exit code
 
 from __future__ import annotations
 
+import dataclasses
+
 from pathlib import Path
 
 import numpy as np
@@ -10,7 +12,10 @@ import pytest
 
 import restitution as rs
 from restitution.cli import main
+from restitution import _engine
 from restitution.runs.config import ConfigError, load_config, spec_from_dict, spec_to_dict
+from restitution.runs.dataset import make_manifest
+from restitution.runs.sweep import SweepSpec
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "sweep_config.toml"
 
@@ -111,3 +116,57 @@ def test_cases_file_relative_to_the_config(tmp_path: Path) -> None:
     pl.DataFrame({"theta_deg": [30.0, 95.0]}).write_csv(tmp_path / "cases.csv")
     with pytest.raises(ConfigError, match=r"sweep.cases: case 1: require `theta_deg` in \(0, 90\]"):
         load_config(tmp_path / "d.toml")
+
+
+# --- every Scene field: a TOML key that round-trips and that the dataset digest sees -----------
+
+def _alternative(name: str, value: object) -> object:
+    """A valid value other than the default, found generically so that a new field is covered."""
+    if name == "shape":
+        return rs.RegularPolygon(r=0.01, n=12, phi0_deg=3.0)
+    if name in rs.Scene.__dataclass_fields__ and isinstance(value, str):
+        for alt in _engine.CHOICES[name]:
+            if alt != value:
+                try:
+                    rs.Scene(**{name: alt})
+                    return alt
+                except ValueError:
+                    continue
+    if value is None:
+        return 0.5 * rs.Scene().E  # the optional stiffnesses and damping accept this
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, int):
+        return value * 2 if value else 1
+    return float(value) * 0.5 if value else 0.1
+
+
+def _toml(value: object) -> str:
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (list, tuple)):
+        return "[" + ", ".join(_toml(v) for v in value) + "]"
+    return repr(value)
+
+
+def _write_config(path: Path, scene: rs.Scene) -> Path:
+    spec_dict = spec_to_dict(SweepSpec(scene, axes={"theta_deg": [30.0, 60.0]}))
+    shape = spec_dict["scene"].pop("shape")
+    lines = ["[scene]"] + [f"{k} = {_toml(v)}" for k, v in spec_dict["scene"].items()]
+    lines += ["[scene.shape]"] + [f"{k} = {_toml(v)}" for k, v in shape.items()]
+    lines += ["[axes]", "theta_deg = [30.0, 60.0]"]
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("name", [f.name for f in dataclasses.fields(rs.Scene)])
+def test_every_scene_field_round_trips_through_toml_and_changes_the_digest(tmp_path: Path, name: str) -> None:
+    default = rs.Scene()
+    changed = default.replace(**{name: _alternative(name, getattr(default, name))})
+    assert getattr(changed, name) != getattr(default, name)
+    spec, _ = load_config(_write_config(tmp_path / "c.toml", changed))
+    assert spec.scene == changed
+    digests = {make_manifest(SweepSpec(s, axes={"theta_deg": [30.0, 60.0]}), 8)["spec_sha256"] for s in (default, changed)}
+    assert len(digests) == 2, f"the dataset digest ignores `{name}`"

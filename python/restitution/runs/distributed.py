@@ -14,13 +14,13 @@ from typing import Any, Callable, Sequence
 
 import polars as pl
 
-from .. import _core
+from .._core import __version__ as ENGINE_VERSION
 from .sweep import Chunk, SweepSpec
 
 
 def _chunk_task(spec: SweepSpec, start: int, stop: int, threads: int, version: str) -> pl.DataFrame:
-    if _core.__version__ != version:
-        raise RuntimeError(f"worker runs restitution {_core.__version__}, the client {version}: "
+    if ENGINE_VERSION != version:
+        raise RuntimeError(f"worker runs restitution {ENGINE_VERSION}, the client {version}: "
                            "install the same version on every worker")
     return spec.run(start, stop, threads)
 
@@ -64,7 +64,7 @@ def run_chunks(spec: SweepSpec, chunks: Sequence[Chunk], scheduler: Any, threads
             c = next(todo, None)
             if c is None:
                 return
-            fut = client.submit(_chunk_task, spec_future, c.start, c.stop, threads, _core.__version__,
+            fut = client.submit(_chunk_task, spec_future, c.start, c.stop, threads, ENGINE_VERSION,
                                 key=f"restitution-chunk-{run_id}-{c.index}", pure=False)
             live[fut.key] = (fut, c)
             running.add(fut)

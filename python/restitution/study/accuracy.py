@@ -23,6 +23,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..runs.sweep import sweep
+from ..scene import Scene
+from ..shapes import Disc, RegularPolygon
+
 SHAPES = (0, 12, 30, 120, 480)
 STEPS = {"gear5": (0.03, 0.02, 0.01, 0.005, 0.002), "verlet": (0.1, 0.05, 0.02, 0.01, 0.005, 0.002)}
 THETA = (5.0, 15.0, 30.0, 45.0, 60.0, 75.0, 89.0)
@@ -37,10 +41,8 @@ OUTPUTS = ("e_n", "e_t", "e_kin", "omega_out")
 
 
 def scene_for(n: int, **changes):
-    import restitution as rs
-
-    shape = rs.Disc(r=0.01) if n == 0 else rs.RegularPolygon(r=0.01, n=n, phi0_deg=0.0)
-    return rs.Scene.paper(shape=shape, **changes)
+    shape = Disc(r=0.01) if n == 0 else RegularPolygon(r=0.01, n=n, phi0_deg=0.0)
+    return Scene.paper(shape=shape, **changes)
 
 
 def timed_sweep(scene, theta, mu, min_impacts: int = 256):
@@ -48,15 +50,13 @@ def timed_sweep(scene, theta, mu, min_impacts: int = 256):
     tiled to at least ``min_impacts`` rows (so the per-call overhead does not count), best of two."""
     import polars as pl
 
-    import restitution as rs
-
-    df = rs.sweep(scene, theta_deg=list(theta), mu=list(mu), threads=1)
+    df = sweep(scene, theta_deg=list(theta), mu=list(mu), threads=1)
     tiles = -(-min_impacts // df.height)
     cases = pl.concat([df.select("theta_deg", "mu")] * tiles)
     best = float("inf")
     for _ in range(2):
         start = time.perf_counter()
-        rs.sweep(scene, cases=cases, threads=1)
+        sweep(scene, cases=cases, threads=1)
         best = min(best, time.perf_counter() - start)
     return df, 1e6 * best / cases.height
 

@@ -29,7 +29,7 @@ from typing import Callable
 import numpy as np
 
 from . import theory
-from .. import _core
+from .._core import check_theta
 from .._engine import real
 from ..scene import Scene
 from ..simulate import simulate
@@ -93,7 +93,7 @@ def gamma_for_e_n(scene: Scene, e_n: float, *, theta_deg: float = 90.0, tol: flo
     if not (0.0 < tol < 1e-2):
         raise ValueError(f"require `tol` in (0, 0.01) (found {tol})")
     th = real("theta_deg", theta_deg)
-    _core.check_theta(th)
+    check_theta(th)
     if scene.normal_law != "area":
         raise ValueError('gamma is used by the area law only (scene has `normal_law` "linear"; calibrate `cn`)')
     target = float(e_n)
@@ -133,7 +133,7 @@ def mu_for_e_t(scene: Scene, e_t: float, theta_deg: float, *, omega_in: float = 
     0.215
     """
     th = real("theta_deg", theta_deg)
-    _core.check_theta(th)
+    check_theta(th)
     if th >= 90.0:
         raise ValueError("require `theta_deg` < 90 (e_T is undefined head-on)")
     target = float(e_t)

@@ -1,7 +1,7 @@
 //! Many impacts in parallel (rayon over cases). Every case runs the very same code as a single
 //! [`simulate`](crate::simulate) call, so results do not depend on the thread count.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::impact::{simulate, Record};
 use crate::model::{check_case, Initial, Scene};
 use rayon::prelude::*;
@@ -31,7 +31,7 @@ fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
 pub fn check_cases(
     cases: &[Case],
     threads: usize,
-) -> std::result::Result<(), (usize, crate::Error)> {
+) -> std::result::Result<(), (usize, Error)> {
     let results = on_threads(threads, || {
         cases
             .par_iter()
@@ -51,7 +51,7 @@ pub fn check_cases(
 pub fn run_cases(
     cases: &[Case],
     threads: usize,
-) -> std::result::Result<Vec<Record>, (usize, crate::Error)> {
+) -> std::result::Result<Vec<Record>, (usize, Error)> {
     let work = || {
         cases
             .par_iter()

@@ -1,0 +1,37 @@
+"""Every example in examples/ runs to the end on quick settings and writes what it says.
+
+The examples are discovered, so a new one is covered without editing this file; one that needs
+arguments beyond its quick settings belongs in ``ARGS``.
+"""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.py"))
+
+#: Quick settings per example (default: an exact disc on a coarse grid, figures to --out).
+ARGS = {
+    "quickstart": [],
+    "accuracy_study": ["--quick", "--out", "{out}"],
+}
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=[p.stem for p in EXAMPLES])
+def test_example_runs(path: Path, tmp_path: Path) -> None:
+    args = [a.format(out=tmp_path) for a in ARGS.get(path.stem, ["--disc", "--quick", "--out", "{out}"])]
+    done = subprocess.run([sys.executable, str(path), *args], capture_output=True, text=True, timeout=600,
+                          env={**os.environ, "MPLBACKEND": "Agg"}, cwd=tmp_path)
+    assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-4000:]
+    if "--out" in args:
+        written = list(tmp_path.glob("*.png"))
+        assert written, f"{path.name} wrote no figure to {tmp_path}: {done.stdout[-500:]}"
+
+
+def test_every_example_is_covered() -> None:
+    assert {p.stem for p in EXAMPLES} >= {"quickstart", "fig2_restitution", "accuracy_study"}
