@@ -31,7 +31,7 @@ from typing import Any, Callable
 
 import polars as pl
 
-from .. import _core
+from .._core import __version__ as ENGINE_VERSION
 from ._progress import Progress, StopOnInterrupt, want_progress
 from .config import spec_to_dict
 from ..scene import Scene
@@ -115,14 +115,48 @@ def sweep_to_dataset(
         After Ctrl-C, once the chunks in flight are written: every finished chunk is kept and
         ``resume=True`` continues from there.
     """
+    spec = _spec_of(scene, cases, axes)
+    out = Path(out)
+    n_threads = check_threads(threads)
+    manifest = _open_dataset(spec, out, chunk_size, resume)
+    chunk_size = manifest["chunk_size"]
+    digest = manifest["spec_sha256"]
+
+    chunks = list(spec.chunks(chunk_size))
+    done = {c.index for c in chunks if _valid_part(out, c, digest)}
+    pending = [c for c in chunks if c.index not in done]
+    file_meta = _file_metadata(manifest)
+    bar = Progress(spec.n_cases, done=sum(c.stop - c.start for c in chunks if c.index in done),
+                   enabled=want_progress(progress, spec.n_cases))
+    writer = _Writer(lambda c, frame: _write_part(out, c, frame, digest, file_meta))
+    t0 = time.perf_counter()
+    tally = _Tally(writer, bar)
+    stopped = _run_pending(spec, pending, scheduler, n_threads, tally, writer, bar)
+    result = SweepResult(out, spec.n_cases, len(chunks), tally.chunks, len(done), tally.cases,
+                         time.perf_counter() - t0)
+    if stopped:
+        left = len(chunks) - len(done) - tally.chunks
+        raise KeyboardInterrupt(f"stopped with {left} of {len(chunks)} chunks left in {out}; "
+                                "run again with --resume (resume=True) to finish")
+    return result
+
+
+def _spec_of(scene: Scene | SweepSpec, cases: pl.DataFrame | None, axes: dict[str, Any]) -> SweepSpec:
+    """The spec to run: ``scene`` itself when it is one (then no axes or cases may come with it)."""
     if isinstance(scene, SweepSpec):
         if axes or cases is not None:
             raise ValueError("give either a SweepSpec or a scene with axes/cases, not both")
-        spec = scene
-    else:
-        spec = SweepSpec(scene, axes=axes, cases=cases)
-    out = Path(out)
-    n_threads = check_threads(threads)
+        return scene
+    return SweepSpec(scene, axes=axes, cases=cases)
+
+
+def _open_dataset(spec: SweepSpec, out: Path, chunk_size: int | None, resume: bool) -> dict[str, Any]:
+    """Prepares ``out`` for running ``spec`` and returns its manifest.
+
+    A new directory gets the manifest (and the cases table); an existing sweep is resumed only
+    when asked to and only with the same spec (and by default its own chunk size, since which
+    rows a chunk file holds depends on it). Temporary files of dead writers are removed.
+    """
     old = read_manifest(out) if (out / MANIFEST).exists() else None
     if old is not None and not resume:
         raise ValueError(f"`out` {out} already holds a sweep ({MANIFEST}); resume it (--resume, resume=True) "
@@ -138,36 +172,45 @@ def sweep_to_dataset(
     if spec.cases is not None and not (out / CASES_FILE).exists():
         _atomic_write(out / CASES_FILE, lambda tmp: spec.cases.write_parquet(tmp))  # type: ignore[union-attr]
     _remove_stale_tmp(out)
+    return manifest
 
-    chunks = list(spec.chunks(chunk_size))
-    done = {c.index for c in chunks if _valid_part(out, c, manifest["spec_sha256"])}
-    pending = [c for c in chunks if c.index not in done]
-    file_meta = _file_metadata(manifest)
-    bar = Progress(spec.n_cases, done=sum(c.stop - c.start for c in chunks if c.index in done),
-                   enabled=want_progress(progress, spec.n_cases))
-    writer = _Writer(lambda c, frame: _write_part(out, c, frame, manifest["spec_sha256"], file_meta))
-    t0 = time.perf_counter()
-    written = cases_written = 0
 
-    def finished(c: Chunk, frame: pl.DataFrame) -> None:
-        nonlocal written, cases_written
-        writer.put(c, frame)
-        written += 1
-        cases_written += c.stop - c.start
-        bar.update(c.stop - c.start)
+class _Tally:
+    """The ``finished`` callback of the chunk loop: hands each chunk to the writer and counts
+    what this call computed (for :class:`SweepResult` and the progress bar)."""
 
+    def __init__(self, writer: _Writer, bar: Progress) -> None:
+        self._writer, self._bar = writer, bar
+        self.chunks = 0
+        self.cases = 0
+
+    def finished(self, c: Chunk, frame: pl.DataFrame) -> None:
+        self._writer.put(c, frame)
+        self.chunks += 1
+        self.cases += c.stop - c.start
+        self._bar.update(c.stop - c.start)
+
+
+def _run_pending(spec: SweepSpec, pending: list[Chunk], scheduler: Any, n_threads: int, tally: _Tally,
+                 writer: _Writer, bar: Progress) -> bool:
+    """Runs the pending chunks here or on a Dask cluster; returns whether Ctrl-C stopped them.
+
+    Whatever happens, every finished chunk is written before this returns or raises: the first
+    Ctrl-C only stops between chunks, and an error (or a second Ctrl-C) is re-raised after the
+    writer has drained.
+    """
     error: BaseException | None = None
     with StopOnInterrupt() as stop:
         try:
             if scheduler is not None:
                 from .distributed import run_chunks
 
-                run_chunks(spec, pending, scheduler, n_threads, finished, lambda: stop.stopped)
+                run_chunks(spec, pending, scheduler, n_threads, tally.finished, lambda: stop.stopped)
             else:
                 for c in pending:
                     if stop.stopped:
                         break
-                    finished(c, spec.run(c.start, c.stop, n_threads))
+                    tally.finished(c, spec.run(c.start, c.stop, n_threads))
         except BaseException as err:  # noqa: BLE001 - re-raised below, after the drain
             error = err
         finally:
@@ -178,13 +221,7 @@ def sweep_to_dataset(
             bar.close()
     if error is not None:
         raise error
-    result = SweepResult(out, spec.n_cases, len(chunks), written, len(done), cases_written,
-                         time.perf_counter() - t0)
-    if stop.stopped:
-        left = len(chunks) - len(done) - written
-        raise KeyboardInterrupt(f"stopped with {left} of {len(chunks)} chunks left in {out}; "
-                                "run again with --resume (resume=True) to finish")
-    return result
+    return stop.stopped
 
 
 def make_manifest(spec: SweepSpec, chunk_size: int) -> dict[str, Any]:
@@ -193,13 +230,13 @@ def make_manifest(spec: SweepSpec, chunk_size: int) -> dict[str, Any]:
     digest = hashlib.sha256()
     digest.update(json.dumps(body, sort_keys=True).encode())
     digest.update(json.dumps(list(spec.axis_names)).encode())
-    digest.update(_core.__version__.encode())
+    digest.update(ENGINE_VERSION.encode())
     cases_sha = _frame_digest(spec.cases) if spec.cases is not None else None
     if cases_sha is not None:
         digest.update(cases_sha.encode())
     return {
         "format": FORMAT,
-        "restitution_version": _core.__version__,
+        "restitution_version": ENGINE_VERSION,
         "spec": body,
         "axes": list(spec.axis_names),
         "cases_sha256": cases_sha,

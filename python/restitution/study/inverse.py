@@ -21,6 +21,7 @@ Examples
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -97,58 +98,107 @@ def find(df: pl.DataFrame, quantity: str, value: float, tol: float = 0.0) -> pl.
         record columns e_n, e_t, e_kin, omega_out, beta interpolated there. Sorted like the
         sweep's curves, then by theta.
     """
+    _check_find_args(df, quantity, value, tol)
+    keys = group_columns(df)
+    carried = [c for c in _CARRIED if c in df.columns]
+    rows: list[dict[str, Any]] = []
+    for key, part in _curves(df):
+        curve = _Curve.of(part, quantity, value, carried)
+        if curve is not None:
+            rows.extend(_curve_solutions(key, curve, tol))
+    return _solutions_frame(rows, df, keys, carried)
+
+
+def _check_find_args(df: pl.DataFrame, quantity: str, value: float, tol: float) -> None:
+    """Refuses bad arguments up front, before any curve is looked at."""
     if quantity not in df.columns:
         raise ValueError(f"`quantity` {quantity!r} is not a column of the frame (columns: {', '.join(df.columns)})")
     if not np.isfinite(value):
         raise ValueError(f"require `value` finite (found {value})")
     if not (tol >= 0.0 and np.isfinite(tol)):
         raise ValueError(f"require `tol` finite and >= 0 (found {tol})")
-    keys = group_columns(df)
-    carried = [c for c in _CARRIED if c in df.columns]
-    rows: list[dict[str, Any]] = []
-    for key, part in _curves(df):
+
+
+@dataclass(frozen=True)
+class _Curve:
+    """One curve of the sweep (fixed non-theta axes) with its unusable samples dropped.
+
+    ``d`` is the measured quantity minus the sought value, so solutions are the zeros of the
+    piecewise-linear d(theta); ``cols`` are the record columns carried to each solution.
+    """
+
+    th: np.ndarray
+    y: np.ndarray
+    d: np.ndarray
+    cols: dict[str, np.ndarray]
+
+    @staticmethod
+    def of(part: pl.DataFrame, quantity: str, value: float, carried: list[str]) -> _Curve | None:
+        """The curve of one group's rows, or None when no row has the quantity (null everywhere)."""
         part = part.filter(pl.col(quantity).is_not_null())
         if part.height == 0:
-            continue
+            return None
         th = part["theta_deg"].to_numpy().astype(float)
         y = part[quantity].to_numpy().astype(float)
         keep = np.isfinite(y)
         th, y = th[keep], y[keep]
         cols = {c: part[c].to_numpy()[keep].astype(float) for c in carried}
-        d = y - value
-        bands = _band(th, d, tol) if tol > 0 else []
-        crossings = _crossings(th, d)
+        return _Curve(th, y, y - value, cols)
 
-        def interp(j: int, f: float) -> dict[str, float]:
-            out = {}
-            for c, arr in cols.items():
-                out[c] = float(arr[j] + f * (arr[j + 1] - arr[j])) if len(arr) > 1 else float(arr[0])
-            return out
+    def interp(self, j: int, f: float) -> dict[str, float]:
+        """The carried columns at fraction ``f`` of segment ``j`` (the one sample if there is one)."""
+        out = {}
+        for c, arr in self.cols.items():
+            out[c] = float(arr[j] + f * (arr[j + 1] - arr[j])) if len(arr) > 1 else float(arr[0])
+        return out
 
-        def slope(j: int) -> float:
-            return float((y[j + 1] - y[j]) / (th[j + 1] - th[j])) if len(th) > 1 else float("nan")
+    def slope(self, j: int) -> float:
+        """d quantity / d theta on segment ``j`` (NaN for a one-sample curve)."""
+        th, y = self.th, self.y
+        return float((y[j + 1] - y[j]) / (th[j + 1] - th[j])) if len(th) > 1 else float("nan")
 
-        used = set()
-        for t, j, f in crossings:
-            lo = hi = t
-            for b, (blo, bhi) in enumerate(bands):
-                if blo - 1e-12 <= t <= bhi + 1e-12:
-                    lo, hi = blo, bhi
-                    used.add(b)
-                    break
-            rows.append({**key, "theta_deg": t, "theta_lo": lo, "theta_hi": hi, "kind": "crossing",
-                         "slope": slope(j), **interp(j, f)})
+
+def _curve_solutions(key: dict[str, Any], curve: _Curve, tol: float) -> list[dict[str, Any]]:
+    """The rows of one curve: each crossing with the band that holds it, then each band that
+    holds no crossing as a "near" row at its closest approach."""
+    bands = _band(curve.th, curve.d, tol) if tol > 0 else []
+    rows = []
+    used = set()
+    for t, j, f in _crossings(curve.th, curve.d):
+        lo = hi = t
         for b, (blo, bhi) in enumerate(bands):
-            if b in used:
-                continue
-            # Closest approach: |d| is piecewise linear, so at a band end or a grid point inside.
-            cand = [blo, bhi] + [float(t) for t in th if blo <= t <= bhi]
-            dd = np.interp(cand, th, d)
-            t = cand[int(np.argmin(np.abs(dd)))]
-            j = int(np.clip(np.searchsorted(th, t, side="right") - 1, 0, max(len(th) - 2, 0)))
-            f = float((t - th[j]) / (th[j + 1] - th[j])) if len(th) > 1 else 0.0
-            rows.append({**key, "theta_deg": t, "theta_lo": blo, "theta_hi": bhi, "kind": "near",
-                         "slope": slope(j), **interp(j, f)})
+            if blo - 1e-12 <= t <= bhi + 1e-12:
+                lo, hi = blo, bhi
+                used.add(b)
+                break
+        rows.append({**key, "theta_deg": t, "theta_lo": lo, "theta_hi": hi, "kind": "crossing",
+                     "slope": curve.slope(j), **curve.interp(j, f)})
+    for b, (blo, bhi) in enumerate(bands):
+        if b in used:
+            continue
+        t, j, f = _closest_approach(curve, blo, bhi)
+        rows.append({**key, "theta_deg": t, "theta_lo": blo, "theta_hi": bhi, "kind": "near",
+                     "slope": curve.slope(j), **curve.interp(j, f)})
+    return rows
+
+
+def _closest_approach(curve: _Curve, blo: float, bhi: float) -> tuple[float, int, float]:
+    """(theta, segment index, fraction) where |d| is smallest within the band [blo, bhi].
+
+    |d| is piecewise linear, so the minimum is at a band end or at a grid point inside.
+    """
+    th = curve.th
+    cand = [blo, bhi] + [float(t) for t in th if blo <= t <= bhi]
+    dd = np.interp(cand, th, curve.d)
+    t = cand[int(np.argmin(np.abs(dd)))]
+    j = int(np.clip(np.searchsorted(th, t, side="right") - 1, 0, max(len(th) - 2, 0)))
+    f = float((t - th[j]) / (th[j + 1] - th[j])) if len(th) > 1 else 0.0
+    return t, j, f
+
+
+def _solutions_frame(rows: list[dict[str, Any]], df: pl.DataFrame, keys: list[str],
+                     carried: list[str]) -> pl.DataFrame:
+    """The rows as a frame with a fixed schema (also when empty), sorted by curve, then theta."""
     schema: dict[str, Any] = {k: df.schema[k] for k in keys}
     schema.update({"theta_deg": pl.Float64, "theta_lo": pl.Float64, "theta_hi": pl.Float64, "kind": pl.Utf8,
                    "slope": pl.Float64})
