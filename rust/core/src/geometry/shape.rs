@@ -91,6 +91,13 @@ pub enum OverlapMethod {
 }
 
 impl OverlapMethod {
+    /// Every method, in code order (the consistency matrix runs them all).
+    pub const ALL: [OverlapMethod; 3] = [
+        OverlapMethod::Auto,
+        OverlapMethod::HalfPlane,
+        OverlapMethod::Parry,
+    ];
+
     /// Public name, as in the Python API.
     pub fn name(self) -> &'static str {
         match self {
@@ -128,6 +135,36 @@ impl OverlapMethod {
 }
 
 impl Shape {
+    /// One shape of every kind the engine has, circumradius about `r`, for the consistency
+    /// matrix: the exact disc, regular polygons from the triangle to a fine 120-gon, and a
+    /// random convex 7-gon (points on an ellipse of axes r and 0.6 r at seeded angles). A new
+    /// kind of shape adds its representatives here and joins the matrix.
+    pub fn representatives(r: f64, seed: u64) -> Vec<(String, Shape)> {
+        let mut out = vec![("disc".to_string(), Shape::Disc { r })];
+        for n in [3, 4, 5, 12, 120] {
+            if let Ok(p) = Shape::regular_polygon(r, n) {
+                out.push((format!("{n}-gon"), p));
+            }
+        }
+        let mut state = seed;
+        let mut uniform = || {
+            state = state
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut angles: Vec<f64> = (0..7).map(|_| uniform() * 2.0 * PI).collect();
+        angles.sort_by(f64::total_cmp);
+        let pts: Vec<[f64; 2]> = angles
+            .iter()
+            .map(|a| [r * a.cos(), 0.6 * r * a.sin()])
+            .collect();
+        if let Ok(p) = Shape::convex_polygon(&pts) {
+            out.push(("convex 7-gon".to_string(), p));
+        }
+        out
+    }
+
     /// Exact disc of radius `r`.
     pub fn disc(r: f64) -> Result<Self> {
         positive("r", r)?;

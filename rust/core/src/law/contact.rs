@@ -27,6 +27,9 @@ pub struct Forces {
     pub overlap: Option<Overlap>,
     /// Stick/slip state of this step.
     pub stick: StickState,
+    /// x of the elastic force's point of application, relative to the centre of mass: the
+    /// overlap centroid (area law) or the deepest point (linear law).
+    pub x_el: f64,
     /// x of the damping force's point of application, relative to the centre of mass.
     pub x_damp: f64,
 }
@@ -39,7 +42,7 @@ impl Forces {
         match self.overlap {
             None => (0.0, 0.0, 0.0),
             Some(o) => (
-                self.f_el * (v[1] + v[2] * o.cx),
+                self.f_el * (v[1] + v[2] * self.x_el),
                 self.f_d * (v[1] + v[2] * self.x_damp),
                 self.f_t * (v[0] - v[2] * (o.cy - y)),
             ),
@@ -170,16 +173,24 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
             self.spring.reset();
             return Forces::default();
         };
-        let (f_el, f_d, x_damp) = match m.scene.normal_law {
+        let (f_el, f_d, x_el, x_damp) = match m.scene.normal_law {
             NormalLaw::Area => {
                 // Exact rate of the overlap area: minus the chord times the normal velocity
                 // of the body at the chord's midpoint (the body velocity is linear along it).
                 let da_dt = -o.chord * (v[1] + v[2] * o.x_mid);
-                (o.area * self.e_over_l, m.area_damping * da_dt, o.x_mid)
+                (
+                    o.area * self.e_over_l,
+                    m.area_damping * da_dt,
+                    o.cx,
+                    o.x_mid,
+                )
             }
             NormalLaw::Linear { kn, cn } => {
+                // One contact at the deepest point: spring and dashpot act there, so the spring
+                // is the gradient of kn delta^2 / 2 (torque included) and the dashpot's power is
+                // -cn (d delta / dt)^2. (On the disc the deepest point lies below the centre.)
                 let ddepth_dt = -(v[1] + v[2] * o.x_low);
-                (kn * o.depth, cn * ddepth_dt, o.cx)
+                (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
             }
         };
         // The plate never pulls. (f_n is selected from the sum rather than re-added after the
@@ -196,12 +207,13 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         Forces {
             fx: f_t,
             fy: f_n,
-            torque: o.cx * f_el + x_damp * f_d - arm_y * f_t,
+            torque: x_el * f_el + x_damp * f_d - arm_y * f_t,
             f_el,
             f_d,
             f_t,
             overlap: Some(o),
             stick,
+            x_el,
             x_damp,
         }
     }

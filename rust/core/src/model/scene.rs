@@ -20,6 +20,33 @@ pub enum NormalLaw {
     },
 }
 
+impl NormalLaw {
+    /// Every normal law, in code order (the consistency matrix runs them all); the parameters
+    /// shown are placeholders, set per scene by [`NormalLaw::with_scale`].
+    pub const ALL: [NormalLaw; 2] = [NormalLaw::Area, NormalLaw::Linear { kn: 1.0, cn: 0.0 }];
+
+    /// The same law with its own parameters set from a stiffness scale `stiffness` (Pa) and a
+    /// damping ratio `zeta` for a particle of mass `mass`: the linear law gets kn = stiffness
+    /// and cn = 2 zeta sqrt(kn m); the area law has none (its damping is the scene's gamma).
+    pub fn with_scale(self, stiffness: f64, zeta: f64, mass: f64) -> Self {
+        match self {
+            NormalLaw::Area => NormalLaw::Area,
+            NormalLaw::Linear { .. } => NormalLaw::Linear {
+                kn: stiffness,
+                cn: 2.0 * zeta * (stiffness * mass).sqrt(),
+            },
+        }
+    }
+
+    /// Public name, as in the Python API.
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalLaw::Area => "area",
+            NormalLaw::Linear { .. } => "linear",
+        }
+    }
+}
+
 /// Which moment of inertia the particle gets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum InertiaModel {
@@ -28,6 +55,19 @@ pub enum InertiaModel {
     Shape,
     /// Sphere, I = 0.4 m r^2, for comparison with 3D codes (discs only).
     Sphere,
+}
+
+impl InertiaModel {
+    /// Every inertia model, in code order (the consistency matrix runs them all).
+    pub const ALL: [InertiaModel; 2] = [InertiaModel::Shape, InertiaModel::Sphere];
+
+    /// Public name, as in the Python API.
+    pub fn name(self) -> &'static str {
+        match self {
+            InertiaModel::Shape => "shape",
+            InertiaModel::Sphere => "sphere",
+        }
+    }
 }
 
 /// The time integrator.
@@ -44,6 +84,9 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    /// Every integrator, in code order (the consistency matrix runs them all).
+    pub const ALL: [Integrator; 3] = [Integrator::Gear5, Integrator::Verlet, Integrator::Reference];
+
     /// Largest accepted stiffness index h = dt * (fastest rate of the contact), the measured
     /// stability bound divided by a safety margin of 2 (and rounded down); see
     /// [`crate::model::stability`] for the rates.

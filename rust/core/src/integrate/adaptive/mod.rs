@@ -233,12 +233,18 @@ const D: [f64; 7] = [
     69997945.0 / 29380423.0,
 ];
 
+/// The nodes c_i of the stages (fractions of the step at which each stage is evaluated).
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+
 /// One accepted Runge-Kutta step with what its dense output needs.
 struct Step {
     y0: State,
     y1: State,
     k: [State; 7],
     h: f64,
+    /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
+    /// tolerance) while the clip was on: the step integrated across a clip switch.
+    pull: Option<f64>,
 }
 
 impl Step {
@@ -267,6 +273,8 @@ struct Reference<'a> {
     tol: f64,
     /// Time step of the directional finite differences of the slip -> stick test.
     fd_step: f64,
+    /// A pull of the unclipped normal force below -force_tol is a missed clip switch.
+    force_tol: f64,
 }
 
 impl<'a> Reference<'a> {
@@ -389,17 +397,25 @@ impl<'a> Reference<'a> {
             );
         };
         let (vy, om) = (s[VY], s[OM]);
-        let (f_el, f_d, x_damp, depth) = match self.linear() {
+        let (f_el, f_d, x_el, x_damp, depth) = match self.linear() {
             None => (
                 model.scene.e_modulus * o.area / model.length,
                 model.area_damping * (-o.chord * (vy + om * o.x_mid)),
+                o.cx,
                 o.x_mid,
                 o.depth,
             ),
             Some((kn, cn)) => {
-                // The depth of the held lowest point (disc: r - y), continued smoothly.
+                // One contact at the held deepest point (disc: r - y below the centre),
+                // continued smoothly; spring and dashpot act there (see `crate::law`).
                 let delta = self.low_depth(m.touch, s[Y], s[PHI]);
-                (kn * delta, cn * (-(vy + om * o.x_low)), o.cx, o.depth)
+                (
+                    kn * delta,
+                    cn * (-(vy + om * o.x_low)),
+                    o.x_low,
+                    o.x_low,
+                    o.depth,
+                )
             }
         };
         let fn_raw = f_el + f_d;
@@ -414,12 +430,12 @@ impl<'a> Reference<'a> {
             Tan::Stick => (trial, StickState::Stick),
             Tan::Slip(sg) => (self.mu * f_n * sg, StickState::Slip),
         };
-        let torque = o.cx * f_el + x_damp * f_d - arm_y * f_t;
+        let torque = x_el * f_el + x_damp * f_d - arm_y * f_t;
         d[VX] = f_t / model.mass;
         d[VY] = f_n / model.mass;
         d[OM] = torque / model.inertia;
         d[XI] = if m.tan == Tan::Stick { v_t } else { 0.0 };
-        d[W_EL] = f_el * (vy + om * o.cx);
+        d[W_EL] = f_el * (vy + om * x_el);
         d[W_D] = f_d * (vy + om * x_damp);
         d[W_T] = f_t * v_t;
         let forces = Forces {
@@ -431,6 +447,7 @@ impl<'a> Reference<'a> {
             f_t,
             overlap: Some(o),
             stick,
+            x_el,
             x_damp,
         };
         (
@@ -470,6 +487,7 @@ impl<'a> Reference<'a> {
     fn dp_step(&self, m: &Mode, y0: &State, k1: &State, h: f64) -> (Step, f64) {
         let mut k = [[0.0; NS]; 7];
         k[0] = *k1;
+        let mut pull = None;
         for st in 1..7 {
             let mut yi = *y0;
             for i in 0..NS {
@@ -479,7 +497,11 @@ impl<'a> Reference<'a> {
                 }
                 yi[i] += h * acc;
             }
-            k[st] = self.eval(m, &yi).0;
+            let (kk, e) = self.eval(m, &yi);
+            k[st] = kk;
+            if pull.is_none() && self.clipped(m) && e.fn_raw < -self.force_tol {
+                pull = Some(C[st]);
+            }
         }
         // The 7th stage is evaluated at the 5th-order solution itself (FSAL).
         let mut y1 = *y0;
@@ -498,7 +520,19 @@ impl<'a> Reference<'a> {
                 e.abs() / (self.tol * self.scale[i])
             })
             .fold(0.0, f64::max);
-        (Step { y0: *y0, y1, k, h }, err)
+        let step = Step {
+            y0: *y0,
+            y1,
+            k,
+            h,
+            pull,
+        };
+        (step, err)
+    }
+
+    /// Whether the clip is watched in mode `m`: on, with an overlap, not held for chattering.
+    fn clipped(&self, m: &Mode) -> bool {
+        m.clip_on && !m.clip_hold && m.touch != Touch::Off
     }
 
     /// The events that can end a piece of mode `m`.
@@ -561,7 +595,16 @@ impl<'a> Reference<'a> {
             (Event::LowLeft, Touch::Poly { low, .. }) => poly(low) - poly(low + n - 1),
             (Event::LowRight, Touch::Poly { low, .. }) => poly(low) - poly(low + 1),
             (Event::ClipOff, _) => -self.eval(m, s).1.fn_raw,
-            (Event::ClipOn, _) => self.eval(m, s).1.fn_raw,
+            (Event::ClipOn, _) => {
+                // Only an overlap can push: once every held corner has risen above the plate
+                // the held continuation is no contact, whatever sign its force has.
+                let e = self.eval(m, s).1;
+                if e.depth > 0.0 {
+                    e.fn_raw
+                } else {
+                    f64::NEG_INFINITY
+                }
+            }
             (Event::ToSlip, _) => {
                 let e = self.eval(m, s).1;
                 e.trial.abs() - self.mu * e.forces.fy
@@ -731,6 +774,7 @@ pub(crate) fn integrate(
         scale,
         tol: opts.tol,
         fd_step: 1e-5 * t_est,
+        force_tol: opts.tol * model.mass * speed / t_est,
     };
     let t_end = TIMEOUT_CONTACT_TIMES * t_est;
     // A guard against hangs (the time-out proper is t_end): steps may be much shorter than
@@ -822,6 +866,15 @@ pub(crate) fn integrate(
                 let g1 = ode.event_value(&mode, ev, &step.y1);
                 let found = if g1 > 0.0 {
                     Some(ode.locate(&mode, ev, &step, g1))
+                } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
+                    // A stage saw the plate pull although the end state does not: the clip
+                    // switched inside the step (and back, in the held continuation); find
+                    // where, on the dense output up to that stage.
+                    (1..=16).map(|k| c * k as f64 / 16.0).find_map(|th| {
+                        let g = ode.event_value(&mode, ev, &step.at(th));
+                        let lo = th - c / 16.0;
+                        (g > 0.0).then(|| ode.locate_in(&mode, ev, &step, lo, th, g))
+                    })
                 } else if matches!(ev, Event::EnterLeft | Event::EnterRight | Event::Touch) {
                     // A corner may dip below the plate and rise again within one step (a
                     // grazing corner beside the chord): look inside the step too.
@@ -837,6 +890,14 @@ pub(crate) fn integrate(
                         first = Some((th, ev));
                     }
                 }
+            }
+        }
+        if let Some(c) = step.pull.filter(|_| zero_pieces < 16) {
+            if first.is_none_or(|(th, _)| th > c) && h > h_min {
+                // The step crossed a clip switch that its dense output does not show: never
+                // integrate across it with the unclipped, pulling force; shorten the step.
+                h = (0.5 * c * h).max(h_min);
+                continue;
             }
         }
         let (s_new, h_taken, event) = match first {
