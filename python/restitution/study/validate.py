@@ -169,7 +169,7 @@ def figure_test2(traces: dict[str, pl.DataFrame], table: pl.DataFrame, path: Pat
     for material, tr in traces.items():
         line, = ax.plot(tr["t"] * 1e6, tr["f_n"] / 1e3, label=f"{material} (engine)")
         h = {row["quantity"]: row["hertz"] for row in table.filter(pl.col("material") == material).iter_rows(named=True)}
-        ax.axhline(h["peak_force"] / 1e3, color=line.get_color(), **{**THEORY_STYLE, "color": line.get_color()})
+        ax.axhline(h["peak_force"] / 1e3, **{**THEORY_STYLE, "color": line.get_color()})
         ax.axvline(h["contact_time"] * 1e6, **{**THEORY_STYLE, "color": line.get_color()})
     ax.set(xlabel="time (us)", ylabel="normal force (kN)",
            title="Test 2: elastic sphere on a rigid plane (dashed: Hertz's peak force, contact time)")

@@ -181,6 +181,15 @@ mod tests {
     }
 
     #[test]
+    fn map_is_monotone() {
+        // Less restitution takes more damping; prints the map documented in docs/model.md 14.3.
+        let cors = [0.01, 0.1, 0.2, 0.5, 0.8, 0.9, 0.98, 1.0];
+        let betas: Vec<f64> = cors.iter().map(|&c| beta_for_cor(c)).collect();
+        println!("cor {cors:?}\nbeta {betas:?}");
+        assert!(betas.windows(2).all(|w| w[0] > w[1]) && betas[7] == 0.0);
+    }
+
+    #[test]
     fn calibration_inverts() {
         for cor in [MIN_COR, 0.1, 0.2, 0.5, 0.8, 0.98, 0.999] {
             let b = beta_for_cor(cor);
