@@ -281,6 +281,26 @@ impl Hertz {
     }
 }
 
+/// k_t and c_t of the tangential spring. Mindlin's vary with the depth (`Hertz`): these are
+/// then their values at the deepest accepted contact, r / 2 (for the rates only).
+fn tangential_constants(
+    scene: &Scene,
+    mindlin: Option<Hertz>,
+    stiffness: f64,
+    mt: f64,
+) -> (f64, f64) {
+    match mindlin {
+        Some(h) => {
+            let s = (0.5 * scene.shape.circumradius()).sqrt();
+            (h.kt * s, h.ct * s.sqrt())
+        }
+        None => {
+            let kt = scene.kt.unwrap_or(2.0 * stiffness / 7.0);
+            (kt, scene.gamma_t * (kt * mt).sqrt())
+        }
+    }
+}
+
 /// A Poisson's ratio: in (-1, 0.5].
 fn poisson(name: &str, nu: f64) -> Result<()> {
     ensure_param!(
@@ -394,18 +414,7 @@ impl Model {
         let mindlin = hertz.is_some() && scene.tangential != TangentialModel::Linear;
         let t_ref = (mass / stiffness).sqrt();
         let mt = 1.0 / (1.0 / mass + r * r / inertia);
-        // The Mindlin spring's k_t and c_t vary with the depth (`Hertz`); `kt` and `ct` then
-        // hold their values at the deepest accepted contact, r / 2 (for the rates only).
-        let (kt, ct) = match hertz.filter(|_| mindlin) {
-            Some(h) => {
-                let s = (0.5 * r).sqrt();
-                (h.kt * s, h.ct * s.sqrt())
-            }
-            None => {
-                let kt = scene.kt.unwrap_or(2.0 * stiffness / 7.0);
-                (kt, scene.gamma_t * (kt * mt).sqrt())
-            }
-        };
+        let (kt, ct) = tangential_constants(scene, hertz.filter(|_| mindlin), stiffness, mt);
         let length = 4.0 * r;
         let area_damping = scene.gamma * (mass * scene.e_modulus).sqrt() / length;
         let dt = scene.dt_factor * t_ref;
