@@ -59,7 +59,7 @@ BAD = [
     ("[scene]\nE = -1.0\n[axes]\ntheta_deg = 30", "scene.E: require `E` finite and > 0 (found -1.0)"),
     ('[scene]\npreset = "ppr"\n[axes]\ntheta_deg = 30', "scene.preset: require one of 'default', 'paper' (found 'ppr')"),
     ('[scene]\nintegrator = "rk4"\n[axes]\ntheta_deg = 30', 'scene.integrator: require `integrator` one of "gear5", "verlet"'),
-    ('[scene.shape]\nkind = "square"\n[axes]\ntheta_deg = 30', "scene.shape.kind: require one of 'disc', 'regular_polygon', 'convex_polygon'"),
+    ('[scene.shape]\nkind = "square"\n[axes]\ntheta_deg = 30', "scene.shape.kind: require one of 'disc', 'sphere', 'regular_polygon', 'convex_polygon'"),
     ('[scene.shape]\nkind = "disc"\nn = 3\n[axes]\ntheta_deg = 30', "scene.shape.n: unknown key; allowed: r"),
     ('[scene.shape]\nkind = "regular_polygon"\nn = 2\n[axes]\ntheta_deg = 30', "scene.shape: require `n` >= 3 (found 2)"),
     ("[axes]\ntheta_deg = [0, 30]", "axes.theta_deg: case 0: require `theta_deg` in (0, 90] degrees"),

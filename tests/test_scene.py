@@ -89,7 +89,7 @@ def test_dt_factor_at_the_bound_is_accepted(integrator: str) -> None:
 
 
 @pytest.mark.parametrize(("name", "value"), [("integrator", "rk4"), ("integrator", "Gear5"),
-                                             ("normal_law", "hertz"), ("inertia", "cube")])
+                                             ("normal_law", "hooke"), ("inertia", "cube")])
 def test_choices_list_the_allowed_names(name: str, value: str) -> None:
     with raises_naming(ValueError, name, f"found {value!r}"):
         rs.Scene(**{name: value})
@@ -262,7 +262,7 @@ def test_sweep_refuses_2d_axes(disc_scene: rs.Scene, name: str) -> None:
     ("dt_factor", [0.01, 1e3], "stability bound"),
     ("n", [6, 2], ">= 3"),
     ("integrator", ["gear5", "rk4"], "gear5"),
-    ("normal_law", ["hertz"], "area"),
+    ("normal_law", ["hooke"], "area"),
     ("theta_deg", [], "non-empty"),
     ("mu", [], "non-empty"),
 ])

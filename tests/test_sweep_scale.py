@@ -112,7 +112,7 @@ def test_combined_rules_checked_across_axes() -> None:
     with pytest.raises(ValueError, match=r"case 1: require `inertia` \"shape\" for polygons"):
         rs.sweep(CHEAP, cases=pl.DataFrame({"theta_deg": [30.0, 30.0], "n": [0, 5], "inertia": ["sphere"] * 2}))
     with pytest.raises(ValueError, match=r"require `normal_law` one of \"area\", \"linear\""):
-        rs.sweep(CHEAP, theta_deg=30.0, normal_law=["hertz"])
+        rs.sweep(CHEAP, theta_deg=30.0, normal_law=["hooke"])
     with pytest.raises(ValueError, match=r"require `chunk_size` an integer >= 1"):
         rs.sweep(CHEAP, theta_deg=30.0, chunk_size=0)
 

@@ -9,7 +9,7 @@ True
 from ._core import __version__
 from .errors import RestitutionError
 from .scene import MAX_DT_FACTOR, Scene
-from .shapes import ConvexPolygon, Disc, RegularPolygon
+from .shapes import ConvexPolygon, Disc, RegularPolygon, Sphere
 from .simulate import Record, simulate
 from .runs.dataset import read_dataset, sweep_to_dataset
 from .runs.sweep import sweep
@@ -23,6 +23,7 @@ __all__ = [
     "RegularPolygon",
     "RestitutionError",
     "Scene",
+    "Sphere",
     "__version__",
     "analysis",
     "calibrate",

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from . import _engine
-from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape
+from .shapes import ConvexPolygon, Disc, RegularPolygon, Shape, Sphere
 
 INTEGRATORS = _engine.CHOICES["integrator"]
 NORMAL_LAWS = _engine.CHOICES["normal_law"]
@@ -15,11 +15,15 @@ INERTIAS = _engine.CHOICES["inertia"]
 #: Overlap paths: what the shape requires (closed form / half-plane clip), or the general
 #: convex-convex intersection through parry (polygons only), to compare the two.
 OVERLAPS = _engine.CHOICES["overlap"]
+#: Tangential laws: what the normal law implies ("mindlin" for "hertz", else "linear"), the
+#: Cundall-Strack spring, or Mindlin-Deresiewicz (Hertz law only).
+TANGENTIALS = _engine.CHOICES["tangential"]
 
 
 @dataclass(frozen=True, kw_only=True)
 class Scene:
-    """An impact scene: particle, material, contact law and numerics (SI units, per unit depth).
+    """An impact scene: particle, material, contact law and numerics (SI units, per unit depth;
+    per particle for a ``Sphere``).
 
     ``Scene()`` is the study's preset on an exact disc; :meth:`Scene.paper` is the preset on
     the study's 120-gon. Every field is validated: bad values raise ``ValueError`` naming the
@@ -34,11 +38,12 @@ class Scene:
     """
 
     shape: Shape = field(default_factory=lambda: Disc(r=0.01))
-    """Particle shape: ``Disc``, ``RegularPolygon`` or ``ConvexPolygon``."""
+    """Particle shape: ``Disc``, ``RegularPolygon``, ``ConvexPolygon`` (2D, per unit depth) or
+    ``Sphere`` (3D, per particle; Hertz or linear law)."""
     rho: float = 2500.0
     """Density (kg/m^3)."""
     E: float = 1e7
-    """Young's modulus of the area law (Pa); sets t_ref = sqrt(m / E)."""
+    """Young's modulus (Pa): of the area law (t_ref = sqrt(m / E)) or the sphere's (Hertz law)."""
     gamma: float = 0.33
     """Normal damping of the area law (dimensionless; calibrated to e_N = 0.90 head-on at v:
     ``calibrate.gamma_for_e_n`` gives 0.33249 on the 120-gon, 0.33299 on the exact disc)."""
@@ -56,7 +61,8 @@ class Scene:
     stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "reference" it is the largest
     (and first) step instead: its accuracy is set by its tolerance, so use dt_factor=1 for speed."""
     normal_law: str = "area"
-    """"area" (force proportional to overlap area) or "linear" (spring-dashpot on the depth)."""
+    """"area" (force proportional to overlap area), "linear" (spring-dashpot on the depth) or
+    "hertz" (a Sphere's point contact, 4/3 E* sqrt(R) delta^1.5, damped to e_N = ``cor``)."""
     kn: float | None = None
     """Linear law stiffness (Pa); None: equal to E."""
     cn: float | None = None
@@ -64,7 +70,20 @@ class Scene:
     kt: float | None = None
     """Tangential stiffness (Pa); None: 2 E / 7 (area) or 2 kn / 7 (linear)."""
     inertia: str = "shape"
-    """"shape" (exact) or "sphere" (I = 0.4 m r^2, discs only)."""
+    """"shape" (exact; 2/5 m r^2 for a Sphere) or "sphere" (I = 0.4 m r^2, discs and spheres only)."""
+    nu: float | None = None
+    """Poisson's ratio of the particle (Hertz law; required there)."""
+    plate_E: float | None = None
+    """The plate's Young's modulus (Pa, Hertz law); None: a rigid plate."""
+    plate_nu: float | None = None
+    """The plate's Poisson's ratio (Hertz law; required with ``plate_E``)."""
+    cor: float | None = None
+    """Head-on restitution the Hertz law's damping is calibrated to, in [0.01, 1] (required there;
+    independent of the speed)."""
+    tangential: str = "auto"
+    """"auto" ("mindlin" for the Hertz law, else "linear"), "linear" (Cundall-Strack spring ``kt``,
+    damping ``gamma_t``; with the Hertz law ``kt`` in N/m is required) or "mindlin"
+    (k_t = 8 G* sqrt(R delta), incremental, capped at mu F_n, damped like the normal law)."""
     overlap: str = "auto"
     """Overlap with the plate: "auto" (closed-form segment for a disc, half-plane clip for a
     polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""
@@ -72,8 +91,9 @@ class Scene:
     def __post_init__(self) -> None:
         # Python checks only what the engine cannot: types and choice names. Every rule on
         # values (ranges, combinations, the time-step bound) is the engine's, checked here once.
-        if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon)):
-            raise TypeError(f"`shape` must be Disc, RegularPolygon or ConvexPolygon (found {type(self.shape).__name__})")
+        if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon, Sphere)):
+            raise TypeError("`shape` must be Disc, RegularPolygon, ConvexPolygon or Sphere "
+                            f"(found {type(self.shape).__name__})")
         try:
             _engine.check(_engine.columns(self.engine_values(), {}, 1), self.template_vertices())
         except _engine.RestitutionError as err:
@@ -84,7 +104,9 @@ class Scene:
         an impact sets them; None as NaN; a choice as its code)."""
         values: dict[str, float] = {"theta_deg": 90.0, "omega_in": 0.0, "r": self.r,
                                     "n": float(self.shape.n if not isinstance(self.shape, ConvexPolygon) else 0),
-                                    "phi0_deg": _engine.real("phi0_deg", self.shape.phi0_deg)}
+                                    "phi0_deg": _engine.real("phi0_deg", self.shape.phi0_deg),
+                                    "body": float(_engine.code("body", "sphere" if isinstance(self.shape, Sphere)
+                                                               else "prism"))}
         for name in _engine.CASE_COLUMNS:
             if name in values:
                 continue

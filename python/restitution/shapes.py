@@ -104,4 +104,34 @@ class ConvexPolygon:
         return len(self.vertices)
 
 
-Shape = Disc | RegularPolygon | ConvexPolygon
+@dataclass(frozen=True, kw_only=False)
+class Sphere:
+    """A sphere of radius ``r`` moving in its plane of incidence (x, y and the spin about z).
+
+    A 3D body: mass 4/3 pi r^3 rho and moment of inertia 2/5 m r^2, and its records are per
+    particle (kg, N, J), not per unit depth. Takes ``normal_law="hertz"`` (or ``"linear"``,
+    with ``kn`` in N/m); docs/model.md, section 14.
+
+    Parameters
+    ----------
+    r : float
+        Radius in metres (> 0).
+    """
+
+    r: float = 0.0025
+
+    def __post_init__(self) -> None:
+        _core.check_shape(0.0, real("r", self.r), 0.0)
+
+    @property
+    def n(self) -> int:
+        """Shape code in sweeps: 0 (the engine's column ``body`` says "sphere")."""
+        return 0
+
+    @property
+    def phi0_deg(self) -> float:
+        """Orientation at first touch (irrelevant for a sphere)."""
+        return 0.0
+
+
+Shape = Disc | RegularPolygon | ConvexPolygon | Sphere

@@ -35,7 +35,7 @@ import polars as pl
 from .._engine import CHOICES
 from ..errors import RestitutionError
 from ..scene import Scene
-from ..shapes import ConvexPolygon, Disc, RegularPolygon
+from ..shapes import ConvexPolygon, Disc, RegularPolygon, Sphere
 from .sweep import AXES, SweepSpec, check_chunk_size
 
 if sys.version_info >= (3, 11):
@@ -48,7 +48,7 @@ else:  # Python 3.10: the same parser, as a package
 SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name != "shape")
 CHOICE_AXES = CHOICES
 PRESETS = ("default", "paper")
-SHAPE_KEYS = {"disc": ("r",), "regular_polygon": ("r", "n", "phi0_deg"), "convex_polygon": ("vertices", "phi0_deg")}
+SHAPE_KEYS = {"disc": ("r",), "sphere": ("r",), "regular_polygon": ("r", "n", "phi0_deg"), "convex_polygon": ("vertices", "phi0_deg")}
 TOP_KEYS = ("scene", "axes", "sweep")
 SWEEP_KEYS = ("chunk_size", "cases")
 RANGE_KEYS = ("start", "stop", "step", "num")
@@ -140,6 +140,8 @@ def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str
 def shape_to_dict(shape: Any) -> dict[str, Any]:
     if isinstance(shape, Disc):
         return {"kind": "disc", "r": float(shape.r)}
+    if isinstance(shape, Sphere):
+        return {"kind": "sphere", "r": float(shape.r)}
     if isinstance(shape, RegularPolygon):
         return {"kind": "regular_polygon", "r": float(shape.r), "n": int(shape.n), "phi0_deg": float(shape.phi0_deg)}
     return {"kind": "convex_polygon", "vertices": [list(v) for v in shape.vertices], "phi0_deg": float(shape.phi0_deg)}
@@ -217,7 +219,7 @@ def _shape(table: dict[str, Any], fail: Any) -> Any:
             args[key] = _number(f"scene.shape.{key}", value, fail)
     if kind == "convex_polygon" and "vertices" not in args:
         raise fail("scene.shape.vertices", "require counter-clockwise [[x, y], ...] for a convex_polygon")
-    cls = {"disc": Disc, "regular_polygon": RegularPolygon, "convex_polygon": ConvexPolygon}[kind]
+    cls = {"disc": Disc, "sphere": Sphere, "regular_polygon": RegularPolygon, "convex_polygon": ConvexPolygon}[kind]
     try:
         return cls(**args)
     except (ValueError, TypeError) as err:

@@ -42,7 +42,7 @@ pub use integrate::adaptive::{
 pub use law::{plate_overlap, StickState};
 pub use model::{
     check_case, check_orientation, check_theta, max_dt_factor, max_dt_factor_reason,
-    scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, InertiaModel, Initial,
-    Integrator, Model, NormalLaw, Scene, CASE_COLUMNS, CHOICES,
+    scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, Hertz, InertiaModel,
+    Initial, Integrator, Model, NormalLaw, Scene, TangentialModel, CASE_COLUMNS, CHOICES,
 };
 pub use sweep::{check_cases, run_cases, Case};

@@ -11,7 +11,8 @@ use crate::error::{ensure_param, positive, Result};
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
-/// A rigid 2D particle shape, in its body frame (centroid at the origin).
+/// A rigid particle shape, in its body frame (centroid at the origin): a 2D body (per unit
+/// depth) or a sphere moving in its plane of incidence (per particle).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Shape {
     /// Exact disc of radius `r` (m).
@@ -19,8 +20,41 @@ pub enum Shape {
         /// Radius (m).
         r: f64,
     },
+    /// Sphere of radius `r` (m), moving in the plane of incidence (x, y, spin about z): a 3D
+    /// body, so its mass, forces and energies are per particle (kg, N, J), not per unit depth.
+    /// Only the Hertz and linear laws act on it ([`sphere_contact`]).
+    Sphere {
+        /// Radius (m).
+        r: f64,
+    },
     /// Convex polygon (regular n-gons included).
     Polygon(Polygon),
+}
+
+/// The contact of a sphere of radius `r` whose centre is at height `y` with the plate: the
+/// depth delta = r - y of its lowest point (directly below the centre), the Hertz contact
+/// circle (radius a = sqrt(r delta), `chord` = 2 a, `area` = pi a^2 = pi r delta) and the point
+/// where the forces act, taken at the undeformed radius below the centre (`cy` = y - r, the
+/// arm of rigid-body impact theory and of LAMMPS's granular pair styles). `first_moment` is 0
+/// (no area law acts on a sphere). `None` when clear.
+#[inline(always)]
+pub fn sphere_contact(r: f64, y: f64) -> Option<Overlap> {
+    let depth = r - y;
+    if depth <= 0.0 {
+        return None;
+    }
+    let a2 = r * depth;
+    Some(Overlap {
+        area: PI * a2,
+        cx: 0.0,
+        cy: y - r,
+        chord: 2.0 * a2.sqrt(),
+        x_mid: 0.0,
+        depth,
+        x_low: 0.0,
+        first_moment: 0.0,
+        corners: Corners::default(),
+    })
 }
 
 /// A convex polygon in its body frame: counter-clockwise vertices about its centroid.
@@ -124,7 +158,8 @@ impl OverlapMethod {
     /// Refuses a method the shape cannot use (parry on an exact disc).
     pub fn check_shape(self, shape: &Shape) -> Result<()> {
         ensure_param!(
-            !(self == OverlapMethod::Parry && matches!(shape, Shape::Disc { .. })),
+            !(self == OverlapMethod::Parry
+                && matches!(shape, Shape::Disc { .. } | Shape::Sphere { .. })),
             "overlap",
             "\"parry\"",
             "\"auto\" or \"halfplane\" for a Disc (the parry path intersects polygons; \
@@ -140,7 +175,10 @@ impl Shape {
     /// random convex 7-gon (points on an ellipse of axes r and 0.6 r at seeded angles). A new
     /// kind of shape adds its representatives here and joins the matrix.
     pub fn representatives(r: f64, seed: u64) -> Vec<(String, Shape)> {
-        let mut out = vec![("disc".to_string(), Shape::Disc { r })];
+        let mut out = vec![
+            ("disc".to_string(), Shape::Disc { r }),
+            ("sphere".to_string(), Shape::Sphere { r }),
+        ];
         for n in [3, 4, 5, 12, 120] {
             if let Ok(p) = Shape::regular_polygon(r, n) {
                 out.push((format!("{n}-gon"), p));
@@ -171,6 +209,18 @@ impl Shape {
         Ok(Shape::Disc { r })
     }
 
+    /// Sphere of radius `r`.
+    pub fn sphere(r: f64) -> Result<Self> {
+        positive("r", r)?;
+        Ok(Shape::Sphere { r })
+    }
+
+    /// Whether the shape is a 3D body (the sphere: per particle) rather than a 2D one (per
+    /// unit depth).
+    pub fn is_sphere(&self) -> bool {
+        matches!(self, Shape::Sphere { .. })
+    }
+
     /// Regular n-gon with circumradius `r` (vertices at 2 pi k / n in the body frame).
     pub fn regular_polygon(r: f64, n: usize) -> Result<Self> {
         Ok(Shape::Polygon(Polygon::regular(r, n)?))
@@ -184,23 +234,26 @@ impl Shape {
     /// Circumradius r: the disc's radius or the largest vertex distance from the centroid (m).
     pub fn circumradius(&self) -> f64 {
         match self {
-            Shape::Disc { r } => *r,
+            Shape::Disc { r } | Shape::Sphere { r } => *r,
             Shape::Polygon(p) => p.circumradius,
         }
     }
 
-    /// Area (m^2).
+    /// Area (m^2); for the sphere its volume (m^3), so that rho times it is the mass.
     pub fn area(&self) -> f64 {
         match self {
             Shape::Disc { r } => PI * r * r,
+            Shape::Sphere { r } => 4.0 / 3.0 * PI * r * r * r,
             Shape::Polygon(p) => p.area,
         }
     }
 
-    /// Polar second moment of area about the centroid (m^4): I = rho times this.
+    /// Polar second moment of area about the centroid (m^4): I = rho times this; for the
+    /// sphere its second moment of volume about a diameter, 2/5 r^2 times its volume (m^5).
     pub fn polar_moment(&self) -> f64 {
         match self {
             Shape::Disc { r } => 0.5 * PI * r.powi(4),
+            Shape::Sphere { r } => 0.4 * r * r * (4.0 / 3.0 * PI * r * r * r),
             Shape::Polygon(p) => p.polar_moment,
         }
     }
@@ -209,7 +262,7 @@ impl Shape {
     /// point then lies exactly on y = 0.
     pub fn touch_height(&self, phi: f64) -> f64 {
         match self {
-            Shape::Disc { r } => *r,
+            Shape::Disc { r } | Shape::Sphere { r } => *r,
             Shape::Polygon(p) => {
                 let (s, c) = phi.sin_cos();
                 let v = &p.vertices[p.lowest_vertex(s, c)];
@@ -224,6 +277,7 @@ impl Shape {
     pub fn overlap(&self, y: f64, phi: f64) -> Option<Overlap> {
         match self {
             Shape::Disc { r } => disc_segment(*r, y),
+            Shape::Sphere { r } => sphere_contact(*r, y),
             Shape::Polygon(p) => p.clip_below_plate(y, phi),
         }
     }
@@ -231,7 +285,7 @@ impl Shape {
     /// Body-frame vertices (empty for a disc).
     pub fn vertices(&self) -> &[Vector2<f64>] {
         match self {
-            Shape::Disc { .. } => &[],
+            Shape::Disc { .. } | Shape::Sphere { .. } => &[],
             Shape::Polygon(p) => &p.vertices,
         }
     }

@@ -4,7 +4,7 @@ use crate::error::{Error, Result};
 use crate::geometry::Shape;
 use crate::integrate::events;
 use crate::integrate::{Gear5, Stepper, Verlet};
-use crate::law::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate};
+use crate::law::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate, SpherePlate};
 use crate::model::{Initial, Integrator, Model, Scene};
 use std::f64::consts::PI;
 
@@ -207,6 +207,15 @@ fn integrate<S: Stepper>(
             init,
             stepper,
             DiscPlate { r: *r },
+            max_steps,
+            depth_scale,
+            trace,
+        ),
+        Shape::Sphere { r } => integrate_on(
+            model,
+            init,
+            stepper,
+            SpherePlate { r: *r },
             max_steps,
             depth_scale,
             trace,

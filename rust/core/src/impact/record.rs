@@ -143,7 +143,7 @@ impl Trace {
 }
 
 /// Elastic potential of the normal law at depth `depth` below touch, orientation `phi`,
-/// translation only (J/m).
+/// translation only (J/m; J for a sphere).
 fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
     match model.scene.normal_law {
         NormalLaw::Area => {
@@ -154,6 +154,11 @@ fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
             })
         }
         NormalLaw::Linear { kn, .. } => 0.5 * kn * depth * depth,
+        // The integral of 4/3 E* sqrt(R) delta^(3/2): 2/5 of it times delta.
+        NormalLaw::Hertz { .. } => {
+            let k = model.hertz.map_or(0.0, |h| h.k);
+            0.4 * k * depth * depth * depth.sqrt()
+        }
     }
 }
 
@@ -166,14 +171,20 @@ pub fn estimate_max_depth(model: &Model, init: &Initial) -> Result<f64> {
         let (stiff_name, stiff) = match model.scene.normal_law {
             NormalLaw::Area => ("E", model.scene.e_modulus),
             NormalLaw::Linear { kn, .. } => ("kn", kn),
+            NormalLaw::Hertz { .. } => ("E", model.scene.e_modulus),
         };
         let v = (init.vx * init.vx + init.vy * init.vy).sqrt();
+        let per = if model.scene.shape.is_sphere() {
+            ""
+        } else {
+            "/m"
+        };
         return Err(Error::invalid(
             "v",
             v,
             format!(
                 "small enough that the estimated depth stays below r / 2 at {stiff_name} = {stiff:e} Pa \
-                 (normal kinetic energy {ke_n:e} J/m exceeds the elastic energy at depth r / 2: lower v or raise {stiff_name})"
+                 (normal kinetic energy {ke_n:e} J{per} exceeds the elastic energy at depth r / 2: lower v or raise {stiff_name})"
             ),
         ));
     }

@@ -1,9 +1,9 @@
 //! The contact law: normal force (area or linear law, with damping, never attractive) and the
 //! tangential force, evaluated once per time step at the integrator's predicted state.
 
-use crate::geometry::{disc_segment, parry, Overlap, OverlapMethod, Shape};
+use crate::geometry::{disc_segment, parry, sphere_contact, Overlap, OverlapMethod, Shape};
 use crate::law::tangential::{StickState, TangentialSpring};
-use crate::model::{Model, NormalLaw};
+use crate::model::{Hertz, Model, NormalLaw};
 
 /// Position (x, y, phi) or velocity (vx, vy, omega) of the particle.
 pub type Dof = [f64; 3];
@@ -95,6 +95,27 @@ impl PlateGeometry for DiscPlate {
     }
 }
 
+/// A sphere of radius `r`: its Hertz contact ([`sphere_contact`]), no events.
+#[derive(Debug, Clone, Copy)]
+pub struct SpherePlate {
+    /// Radius (m).
+    pub r: f64,
+}
+
+impl PlateGeometry for SpherePlate {
+    const EVENTS: bool = false;
+
+    #[inline(always)]
+    fn overlap(&self, y: f64, _phi: f64) -> Option<Overlap> {
+        sphere_contact(self.r, y)
+    }
+
+    #[inline(always)]
+    fn depth(&self, y: f64, _phi: f64) -> f64 {
+        self.r - y
+    }
+}
+
 /// The overlap of `shape` with the plate at height `y` and orientation `phi`, computed by
 /// `method`: the disc's closed form, or for polygons the half-plane clip or parry's general
 /// intersection. A disc always uses its closed form (`OverlapMethod::check_shape` refuses
@@ -127,7 +148,7 @@ impl PlateGeometry for ShapePlate<'_> {
     fn corner_height(&self, k: usize, y: f64, phi: f64) -> f64 {
         match self.shape {
             Shape::Polygon(p) => p.vertex_height(k, y, phi),
-            Shape::Disc { .. } => f64::NAN,
+            Shape::Disc { .. } | Shape::Sphere { .. } => f64::NAN,
         }
     }
 
@@ -152,6 +173,8 @@ pub struct Contact<'a, G> {
     e_over_l: f64,
     /// The Cundall-Strack spring.
     pub spring: TangentialSpring,
+    /// The Hertz law's constants (zero for the other laws).
+    hertz: Hertz,
 }
 
 impl<'a, G: PlateGeometry> Contact<'a, G> {
@@ -162,6 +185,15 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
             geometry,
             e_over_l: model.scene.e_modulus / model.length,
             spring: TangentialSpring::default(),
+            hertz: model.hertz.unwrap_or(Hertz {
+                e_star: 0.0,
+                g_star: 0.0,
+                beta: 0.0,
+                k: 0.0,
+                c: 0.0,
+                kt: 0.0,
+                ct: 0.0,
+            }),
         }
     }
 
@@ -192,6 +224,12 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
                 let ddepth_dt = -(v[1] + v[2] * o.x_low);
                 (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
             }
+            NormalLaw::Hertz { .. } => {
+                // 4/3 E* sqrt(R) delta^(3/2) and the Tsuji dashpot ~ delta^(1/4) (section 14).
+                let h = &self.hertz;
+                let s = o.depth.sqrt();
+                (h.k * o.depth * s, h.c * s.sqrt() * -v[1], 0.0, 0.0)
+            }
         };
         // The plate never pulls. (f_n is selected from the sum rather than re-added after the
         // clip: the same value, one addition less on the step's critical path.)
@@ -203,7 +241,13 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         };
         let arm_y = o.cy - q[1];
         let v_t = v[0] - v[2] * arm_y;
-        let (f_t, stick) = self.spring.step(v_t, dt, m.scene.mu, f_n, m.kt, m.ct);
+        let (f_t, stick) = if m.mindlin {
+            let (k_xi, rate, ct) = m.spring(o.depth);
+            self.spring
+                .step_scaled(v_t, dt, m.scene.mu, f_n, k_xi, rate, ct)
+        } else {
+            self.spring.step(v_t, dt, m.scene.mu, f_n, m.kt, m.ct)
+        };
         Forces {
             fx: f_t,
             fy: f_n,

@@ -49,11 +49,29 @@ impl TangentialSpring {
         kt: f64,
         ct: f64,
     ) -> (f64, StickState) {
+        self.step_scaled(v_t, dt, mu, fn_, kt, 1.0, ct)
+    }
+
+    /// As [`Self::step`] with the elongation growing at `rate` v_t: with `kt` = 1 and `rate`
+    /// the current stiffness this is the spring incremental in the force (Mindlin's, whose
+    /// stiffness changes with the depth): xi is then minus the elastic force.
+    #[allow(clippy::too_many_arguments)]
+    #[inline]
+    pub fn step_scaled(
+        &mut self,
+        v_t: f64,
+        dt: f64,
+        mu: f64,
+        fn_: f64,
+        kt: f64,
+        rate: f64,
+        ct: f64,
+    ) -> (f64, StickState) {
         if mu == 0.0 {
             self.reset();
             return (0.0, StickState::None);
         }
-        self.xi += v_t * dt;
+        self.xi += rate * v_t * dt;
         let trial = -kt * self.xi - ct * v_t;
         let cap = mu * fn_;
         let (f, state) = if trial.abs() > cap {

@@ -1,7 +1,7 @@
 //! Scene parameters: what the user chooses, validated, with the study's defaults, and the
 //! derived constants (mass, inertia, time step, tangential spring) the contact law uses.
 
-use crate::error::{ensure_param, finite, non_negative, positive, Result};
+use crate::error::{ensure_param, finite, non_negative, positive, Error, Result};
 use crate::geometry::{OverlapMethod, Shape};
 
 /// The normal contact law.
@@ -18,22 +18,62 @@ pub enum NormalLaw {
         /// Normal damping cn (Pa s).
         cn: f64,
     },
+    /// Hertz point contact of a sphere (docs/model.md, section 14): F = 4/3 E* sqrt(R)
+    /// delta^(3/2) plus the Tsuji dashpot calibrated to the head-on restitution `cor`.
+    Hertz {
+        /// Poisson's ratio of the particle.
+        nu: f64,
+        /// The plate's Young's modulus and Poisson's ratio; `None`: a rigid plate.
+        plate: Option<(f64, f64)>,
+        /// Head-on coefficient of restitution the dashpot is calibrated to, in [0.01, 1].
+        cor: f64,
+    },
+}
+
+/// The tangential law.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TangentialModel {
+    /// What the normal law implies: Mindlin for the Hertz law, else the linear spring.
+    #[default]
+    Auto,
+    /// Cundall-Strack linear spring k_t with damping gamma_t (docs/model.md, section 5).
+    Linear,
+    /// Mindlin-Deresiewicz no-slip stiffness k_t = 8 G* sqrt(R delta), incremental in the
+    /// force, with the Tsuji damping (Hertz law only; docs/model.md, section 14.4).
+    Mindlin,
 }
 
 impl NormalLaw {
     /// Every normal law, in code order (the consistency matrix runs them all); the parameters
     /// shown are placeholders, set per scene by [`NormalLaw::with_scale`].
-    pub const ALL: [NormalLaw; 2] = [NormalLaw::Area, NormalLaw::Linear { kn: 1.0, cn: 0.0 }];
+    pub const ALL: [NormalLaw; 3] = [
+        NormalLaw::Area,
+        NormalLaw::Linear { kn: 1.0, cn: 0.0 },
+        NormalLaw::Hertz {
+            nu: 0.3,
+            plate: None,
+            cor: 1.0,
+        },
+    ];
 
     /// The same law with its own parameters set from a stiffness scale `stiffness` (Pa) and a
     /// damping ratio `zeta` for a particle of mass `mass`: the linear law gets kn = stiffness
-    /// and cn = 2 zeta sqrt(kn m); the area law has none (its damping is the scene's gamma).
+    /// and cn = 2 zeta sqrt(kn m); the area law has none (its damping is the scene's gamma);
+    /// the Hertz law keeps its nu and plate and takes the restitution of a linear oscillator
+    /// with damping ratio zeta, exp(-pi zeta / sqrt(1 - zeta^2)), as its `cor`.
     pub fn with_scale(self, stiffness: f64, zeta: f64, mass: f64) -> Self {
         match self {
             NormalLaw::Area => NormalLaw::Area,
             NormalLaw::Linear { .. } => NormalLaw::Linear {
                 kn: stiffness,
                 cn: 2.0 * zeta * (stiffness * mass).sqrt(),
+            },
+            NormalLaw::Hertz { nu, plate, .. } => NormalLaw::Hertz {
+                nu,
+                plate,
+                cor: (-std::f64::consts::PI * zeta / (1.0 - zeta * zeta).max(1e-12).sqrt())
+                    .exp()
+                    .clamp(0.01, 1.0),
             },
         }
     }
@@ -43,6 +83,7 @@ impl NormalLaw {
         match self {
             NormalLaw::Area => "area",
             NormalLaw::Linear { .. } => "linear",
+            NormalLaw::Hertz { .. } => "hertz",
         }
     }
 }
@@ -154,6 +195,8 @@ pub struct Scene {
     pub dt_factor: f64,
     /// How the overlap with the plate is computed (default: what the shape requires).
     pub overlap: OverlapMethod,
+    /// The tangential law (default: what the normal law implies).
+    pub tangential: TangentialModel,
 }
 
 impl Default for Scene {
@@ -171,6 +214,7 @@ impl Default for Scene {
             integrator: Integrator::Gear5,
             dt_factor: 0.01,
             overlap: OverlapMethod::Auto,
+            tangential: TangentialModel::Auto,
         }
     }
 }
@@ -241,6 +285,140 @@ pub struct Model {
     pub ct: f64,
     /// Normal damping prefactor gamma sqrt(m E) / L of the area law (Pa s / m).
     pub area_damping: f64,
+    /// The Hertz law's constants (`None` for the other laws).
+    pub hertz: Option<Hertz>,
+    /// Whether the tangential spring is Mindlin's (stiffness and damping grow with the depth).
+    pub mindlin: bool,
+}
+
+/// Constants of the Hertz law and the Mindlin spring of a sphere of radius R on the plate
+/// (docs/model.md, section 14): with s = sqrt(delta), F_el = `k` delta s, F_d = `c` sqrt(s)
+/// d(delta)/dt, k_t = `kt` s, c_t = `ct` sqrt(s).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hertz {
+    /// Effective modulus E* (Pa): 1 / E* = (1 - nu^2) / E + (1 - nu_p^2) / E_p.
+    pub e_star: f64,
+    /// Effective shear modulus G* (Pa): 1 / G* = (2 - nu) / G + (2 - nu_p) / G_p.
+    pub g_star: f64,
+    /// Damping ratio beta (>= 0) calibrated so that the head-on e_N is `cor`.
+    pub beta: f64,
+    /// 4/3 E* sqrt(R) (N / m^1.5).
+    pub k: f64,
+    /// 2 sqrt(5/6) beta sqrt(2 E* sqrt(R) m) (N s / m^1.25).
+    pub c: f64,
+    /// 8 G* sqrt(R) (N / m^1.5).
+    pub kt: f64,
+    /// 2 sqrt(5/6) beta sqrt(8 G* sqrt(R) m) (N s / m^1.25).
+    pub ct: f64,
+}
+
+impl Hertz {
+    fn new(scene: &Scene, nu: f64, plate: Option<(f64, f64)>, cor: f64, mass: f64) -> Result<Self> {
+        poisson("nu", nu)?;
+        let e = scene.e_modulus;
+        let g = e / (2.0 * (1.0 + nu));
+        let (mut inv_e, mut inv_g) = ((1.0 - nu * nu) / e, (2.0 - nu) / g);
+        if let Some((ep, nup)) = plate {
+            positive("plate_E", ep)?;
+            poisson("plate_nu", nup)?;
+            let gp = ep / (2.0 * (1.0 + nup));
+            inv_e += (1.0 - nup * nup) / ep;
+            inv_g += (2.0 - nup) / gp;
+        }
+        check_cor(cor)?;
+        let beta = super::hertz::beta_for_cor(cor);
+        let (e_star, g_star) = (1.0 / inv_e, 1.0 / inv_g);
+        let sqrt_r = scene.shape.circumradius().sqrt();
+        let damp = 2.0 * (5.0f64 / 6.0).sqrt() * beta;
+        Ok(Hertz {
+            e_star,
+            g_star,
+            beta,
+            k: 4.0 / 3.0 * e_star * sqrt_r,
+            c: damp * (2.0 * e_star * sqrt_r * mass).sqrt(),
+            kt: 8.0 * g_star * sqrt_r,
+            ct: damp * (8.0 * g_star * sqrt_r * mass).sqrt(),
+        })
+    }
+}
+
+/// k_t and c_t of the tangential spring. Mindlin's vary with the depth (`Hertz`): these are
+/// then their values at the deepest accepted contact, r / 2 (for the rates only).
+fn tangential_constants(
+    scene: &Scene,
+    mindlin: Option<Hertz>,
+    stiffness: f64,
+    mt: f64,
+) -> (f64, f64) {
+    match mindlin {
+        Some(h) => {
+            let s = (0.5 * scene.shape.circumradius()).sqrt();
+            (h.kt * s, h.ct * s.sqrt())
+        }
+        None => {
+            let kt = scene.kt.unwrap_or(2.0 * stiffness / 7.0);
+            (kt, scene.gamma_t * (kt * mt).sqrt())
+        }
+    }
+}
+
+/// A Poisson's ratio: in (-1, 0.5].
+fn poisson(name: &str, nu: f64) -> Result<()> {
+    ensure_param!(
+        nu.is_finite() && nu > -1.0 && nu <= 0.5,
+        name,
+        nu,
+        "a Poisson's ratio in (-1, 0.5]"
+    );
+    Ok(())
+}
+
+/// The requested head-on restitution of the Hertz law: in [0.01, 1].
+fn check_cor(cor: f64) -> Result<()> {
+    ensure_param!(
+        cor.is_finite() && (super::hertz::MIN_COR..=1.0).contains(&cor),
+        "cor",
+        cor,
+        format!(
+            "in [{}, 1] (the head-on restitution the Hertz law's damping is calibrated to)",
+            super::hertz::MIN_COR
+        )
+    );
+    Ok(())
+}
+
+/// The pairings of shape, normal law and tangential law that the model has.
+fn check_laws(scene: &Scene) -> Result<()> {
+    let sphere = scene.shape.is_sphere();
+    let hertz = matches!(scene.normal_law, NormalLaw::Hertz { .. });
+    ensure_param!(
+        !hertz || sphere,
+        "normal_law",
+        "hertz",
+        "\"area\" or \"linear\" for a Disc or polygon (the Hertz law is a sphere's point \
+         contact: use shape Sphere)"
+    );
+    ensure_param!(
+        !(sphere && scene.normal_law == NormalLaw::Area),
+        "normal_law",
+        "area",
+        "\"hertz\" or \"linear\" for a Sphere (the area law is a 2D law per unit depth)"
+    );
+    ensure_param!(
+        !(scene.tangential == TangentialModel::Mindlin && !hertz),
+        "tangential",
+        "mindlin",
+        "\"auto\" or \"linear\" unless normal_law is \"hertz\" (Mindlin's stiffness is the \
+         Hertz contact's)"
+    );
+    let linear_t = scene.tangential == TangentialModel::Linear;
+    ensure_param!(
+        !(hertz && linear_t && scene.kt.is_none() && scene.mu > 0.0),
+        "kt",
+        "None",
+        "set (N/m) for tangential \"linear\" on the Hertz law (no default stiffness)"
+    );
+    Ok(())
 }
 
 impl Model {
@@ -265,12 +443,13 @@ impl Model {
         let r = scene.shape.circumradius();
         positive("r", r)?;
         scene.overlap.check_shape(&scene.shape)?;
+        check_laws(scene)?;
         let mass = scene.rho * scene.shape.area();
         let inertia = match scene.inertia {
             InertiaModel::Shape => scene.rho * scene.shape.polar_moment(),
             InertiaModel::Sphere => {
                 ensure_param!(
-                    matches!(scene.shape, Shape::Disc { .. }),
+                    matches!(scene.shape, Shape::Disc { .. } | Shape::Sphere { .. }),
                     "inertia",
                     "sphere",
                     "\"shape\" for polygons (\"sphere\" applies to discs only)"
@@ -278,6 +457,7 @@ impl Model {
                 0.4 * mass * r * r
             }
         };
+        let mut hertz = None;
         let stiffness = match scene.normal_law {
             NormalLaw::Area => scene.e_modulus,
             NormalLaw::Linear { kn, cn } => {
@@ -285,11 +465,17 @@ impl Model {
                 non_negative("cn", cn)?;
                 kn
             }
+            NormalLaw::Hertz { nu, plate, cor } => {
+                let h = Hertz::new(scene, nu, plate, cor, mass)?;
+                hertz = Some(h);
+                // E* R (N/m): t_ref = sqrt(m / (E* R)) is ~1/12 of a contact (section 14.5).
+                h.e_star * r
+            }
         };
+        let mindlin = hertz.is_some() && scene.tangential != TangentialModel::Linear;
         let t_ref = (mass / stiffness).sqrt();
-        let kt = scene.kt.unwrap_or(2.0 * stiffness / 7.0);
         let mt = 1.0 / (1.0 / mass + r * r / inertia);
-        let ct = scene.gamma_t * (kt * mt).sqrt();
+        let (kt, ct) = tangential_constants(scene, hertz.filter(|_| mindlin), stiffness, mt);
         let length = 4.0 * r;
         let area_damping = scene.gamma * (mass * scene.e_modulus).sqrt() / length;
         let dt = scene.dt_factor * t_ref;
@@ -318,7 +504,24 @@ impl Model {
             kt,
             ct,
             area_damping,
+            hertz,
+            mindlin,
         })
+    }
+
+    /// The tangential spring's coefficients at depth `depth` (> 0): (k_xi, rate, c_t) with the
+    /// elastic force -k_xi xi, d(xi)/dt = rate v_t and the damping -c_t v_t. The linear spring:
+    /// (k_t, 1, c_t); Mindlin's, incremental in the force: (1, k_t(delta), c_t(delta)), so
+    /// that xi is minus the elastic force (N).
+    #[inline(always)]
+    pub fn spring(&self, depth: f64) -> (f64, f64, f64) {
+        match self.hertz {
+            Some(h) if self.mindlin => {
+                let s = depth.max(0.0).sqrt();
+                (1.0, h.kt * s, h.ct * s.sqrt())
+            }
+            _ => (self.kt, 1.0, self.ct),
+        }
     }
 
     /// Validates an initial state for this model.
@@ -353,7 +556,7 @@ impl Model {
 /// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
 /// Adding a parameter means a field of [`Scene`], a name here and its line in
 /// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
-pub const CASE_COLUMNS: [&str; 19] = [
+pub const CASE_COLUMNS: [&str; 25] = [
     "theta_deg",
     "omega_in",
     "v",
@@ -373,14 +576,24 @@ pub const CASE_COLUMNS: [&str; 19] = [
     "normal_law",
     "inertia",
     "overlap",
+    "nu",
+    "plate_E",
+    "plate_nu",
+    "cor",
+    "tangential",
+    "body",
 ];
 
 /// Public names of every choice, in code order: a choice column holds the index of its name.
-pub const CHOICES: [(&str, &[&str]); 4] = [
+/// `body`: "prism" is a 2D body per unit depth (the disc or polygon the column `n` names),
+/// "sphere" a sphere of radius `r` (then `n` must be 0).
+pub const CHOICES: [(&str, &[&str]); 6] = [
     ("integrator", &["gear5", "verlet", "reference"]),
-    ("normal_law", &["area", "linear"]),
+    ("normal_law", &["area", "linear", "hertz"]),
     ("inertia", &["shape", "sphere"]),
     ("overlap", &["auto", "halfplane", "parry"]),
+    ("tangential", &["auto", "linear", "mindlin"]),
+    ("body", &["prism", "sphere"]),
 ];
 
 /// The impact angle's rule, written once: in (0, 90] degrees, measured from the plate.
@@ -452,7 +665,7 @@ pub fn scene_from_columns(
     row: &[f64; CASE_COLUMNS.len()],
     vertices: Option<&[[f64; 2]]>,
 ) -> Result<(Scene, Initial)> {
-    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap] =
+    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body] =
         *row;
     check_theta(theta)?;
     positive("v", v)?;
@@ -464,13 +677,27 @@ pub fn scene_from_columns(
     let stiffness = optional(kn).unwrap_or(e);
     let normal_law = match choice("normal_law", law)? {
         0 => NormalLaw::Area,
-        _ => NormalLaw::Linear {
+        1 => NormalLaw::Linear {
             kn: stiffness,
             cn: optional(cn).unwrap_or(0.0),
         },
+        _ => hertz_from_columns(nu, plate_e, plate_nu, cor)?,
+    };
+    optional(nu).map_or(Ok(()), |x| poisson("nu", x))?;
+    optional(cor).map_or(Ok(()), check_cor)?;
+    let shape = if choice("body", body)? == 1 {
+        ensure_param!(
+            n == 0.0 && vertices.is_none(),
+            "n",
+            n,
+            "0 for a sphere (body \"sphere\")"
+        );
+        Shape::sphere(r)?
+    } else {
+        shape_from_columns(n, r, vertices)?
     };
     let scene = Scene {
-        shape: shape_from_columns(n, r, vertices)?,
+        shape,
         rho,
         e_modulus: e,
         gamma,
@@ -487,8 +714,40 @@ pub fn scene_from_columns(
             OverlapMethod::HalfPlane,
             OverlapMethod::Parry,
         ][choice("overlap", overlap)?],
+        tangential: [
+            TangentialModel::Auto,
+            TangentialModel::Linear,
+            TangentialModel::Mindlin,
+        ][choice("tangential", tangential)?],
     };
     Ok((scene, Initial::from_angle(v, theta, omega, phi0)))
+}
+
+/// The Hertz law from its columns: `nu` and `cor` required, `plate_E` and `plate_nu` both
+/// set (an elastic plate) or both unset (a rigid one).
+fn hertz_from_columns(nu: f64, plate_e: f64, plate_nu: f64, cor: f64) -> Result<NormalLaw> {
+    let required = "set for normal_law \"hertz\"";
+    let nu = optional(nu).ok_or_else(|| Error::invalid("nu", "None", required))?;
+    let cor = optional(cor).ok_or_else(|| Error::invalid("cor", "None", required))?;
+    let plate = match (optional(plate_e), optional(plate_nu)) {
+        (Some(ep), Some(nup)) => Some((ep, nup)),
+        (None, None) => None,
+        (Some(_), None) => {
+            return Err(Error::invalid(
+                "plate_nu",
+                "None",
+                "set with plate_E (the plate's Poisson's ratio)",
+            ))
+        }
+        (None, Some(x)) => {
+            return Err(Error::invalid(
+                "plate_nu",
+                x,
+                "None without plate_E (a rigid plate has no Poisson's ratio)",
+            ))
+        }
+    };
+    Ok(NormalLaw::Hertz { nu, plate, cor })
 }
 
 /// Every rule a case must meet before it runs: the scene's ([`Model::new`], the time-step

@@ -28,6 +28,11 @@
 //!   centroid (|c_x| <= r): rate k_n (1 / m + a (1 + mu) r / I), a the largest |x_low| a
 //!   polygon's lowest vertex can have (0 for a disc, r sin(pi / n) for a regular n-gon); the
 //!   same lever with c_n for the damping.
+//! - Hertz law (a sphere): the stiffness dF/d(delta) = 2 E* sqrt(R delta) and the dashpot's
+//!   coefficient c delta^(1/4) at the deepest accepted contact, delta = r / 2 (deeper impacts
+//!   are refused), with no lever (the force acts below the centre). The dashpot's own depth
+//!   derivative, c delta^(-3/4) delta' / 4, is singular at touch but acts over a vanishing
+//!   depth; `tests/sphere.rs` checks that the bound holds. Mindlin's spring likewise at r / 2.
 //! - Tangential (mu > 0): the Cundall-Strack spring at an arm <= r below the centre gives
 //!   omega_t = sqrt(k_t / m_t) and lambda_t = c_t / m_t = gamma_t omega_t, with
 //!   m_t = 1 / (1 / m + r^2 / I).
@@ -160,6 +165,16 @@ impl Model {
                 let lever = 1.0 + lowest_point_arm(&s.shape) * (1.0 + mu) / (kappa * r);
                 ((kn * lever / m).sqrt(), cn * lever / m)
             }
+            NormalLaw::Hertz { .. } => {
+                // At the deepest accepted contact, r / 2: the stiffness dF/d(delta) =
+                // 3/2 k sqrt(delta) = 2 E* sqrt(R delta) and the dashpot c delta^(1/4) grow
+                // with the depth. The force acts below the centre (no lever).
+                let h = self
+                    .hertz
+                    .unwrap_or_else(|| unreachable!("Hertz law without constants"));
+                let s = (0.5 * r).sqrt();
+                ((1.5 * h.k * s / m).sqrt(), h.c * s.sqrt() / m)
+            }
         };
         let (tangential, tangential_damping) = if mu > 0.0 {
             let mt = 1.0 / (1.0 / m + r * r / self.inertia);
@@ -197,6 +212,10 @@ impl Model {
         let cause = match (what, s.normal_law) {
             ("the normal damping", NormalLaw::Area) => format!(" (gamma = {})", s.gamma),
             ("the normal damping", NormalLaw::Linear { cn, .. }) => format!(" (cn = {cn} Pa s)"),
+            ("the normal damping", NormalLaw::Hertz { cor, .. }) => format!(" (cor = {cor})"),
+            ("the tangential damping", NormalLaw::Hertz { cor, .. }) if self.mindlin => {
+                format!(" (cor = {cor})")
+            }
             ("the tangential damping", _) => format!(" (gamma_t = {})", s.gamma_t),
             _ => String::new(),
         };

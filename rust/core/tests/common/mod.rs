@@ -9,6 +9,7 @@ pub fn energy_verdict(scene: &Scene, rec: &Record) -> Option<String> {
     let damped = match scene.normal_law {
         NormalLaw::Area => scene.gamma > 0.0,
         NormalLaw::Linear { cn, .. } => cn > 0.0,
+        NormalLaw::Hertz { cor, .. } => cor < 1.0,
     };
     let gain = rec.energy_out / rec.energy_in - 1.0;
     if (damped || scene.mu > 0.0) && gain > 1e-6 {

@@ -281,7 +281,7 @@ impl<'a> Reference<'a> {
     fn linear(&self) -> Option<(f64, f64)> {
         match self.model.scene.normal_law {
             NormalLaw::Linear { kn, cn } => Some((kn, cn)),
-            NormalLaw::Area => None,
+            NormalLaw::Area | NormalLaw::Hertz { .. } => None,
         }
     }
 
@@ -397,15 +397,22 @@ impl<'a> Reference<'a> {
             );
         };
         let (vy, om) = (s[VY], s[OM]);
-        let (f_el, f_d, x_el, x_damp, depth) = match self.linear() {
-            None => (
+        let (f_el, f_d, x_el, x_damp, depth) = match (self.linear(), model.hertz) {
+            (None, Some(h)) => {
+                // The sphere's Hertz law (section 14); beyond separation it continues as
+                // nothing, like the disc's segment. It acts along the centre line.
+                let delta = (model.r - s[Y]).max(0.0);
+                let q = delta.sqrt();
+                (h.k * delta * q, h.c * q.sqrt() * -vy, 0.0, 0.0, o.depth)
+            }
+            (None, None) => (
                 model.scene.e_modulus * o.area / model.length,
                 model.area_damping * (-o.chord * (vy + om * o.x_mid)),
                 o.cx,
                 o.x_mid,
                 o.depth,
             ),
-            Some((kn, cn)) => {
+            (Some((kn, cn)), _) => {
                 // One contact at the held deepest point (disc: r - y below the centre),
                 // continued smoothly; spring and dashpot act there (see `crate::law`).
                 let delta = self.low_depth(m.touch, s[Y], s[PHI]);
@@ -423,7 +430,10 @@ impl<'a> Reference<'a> {
         let f_n = f_el + f_d;
         let arm_y = o.cy - s[Y];
         let v_t = s[VX] - om * arm_y;
-        let trial = -model.kt * s[XI] - model.ct * v_t;
+        // (k_t, 1, c_t) for the linear spring; Mindlin's, incremental in the force, (1, k_t, c_t)
+        // at this depth, xi then being minus the elastic force.
+        let (k_xi, rate, ct) = model.spring(o.depth);
+        let trial = -k_xi * s[XI] - ct * v_t;
         let (f_t, stick) = match m.tan {
             Tan::None => (0.0, StickState::None),
             Tan::Free => (0.0, StickState::Slip),
@@ -434,7 +444,7 @@ impl<'a> Reference<'a> {
         d[VX] = f_t / model.mass;
         d[VY] = f_n / model.mass;
         d[OM] = torque / model.inertia;
-        d[XI] = if m.tan == Tan::Stick { v_t } else { 0.0 };
+        d[XI] = if m.tan == Tan::Stick { rate * v_t } else { 0.0 };
         d[W_EL] = f_el * (vy + om * x_el);
         d[W_D] = f_d * (vy + om * x_damp);
         d[W_T] = f_t * v_t;
@@ -473,7 +483,7 @@ impl<'a> Reference<'a> {
 
     /// The spring elongation the law implies: integrated while sticking, algebraic otherwise.
     fn xi_of(&self, m: &Mode, s: &State, e: &Eval) -> f64 {
-        let (kt, ct) = (self.model.kt, self.model.ct);
+        let (kt, _, ct) = self.model.spring(e.depth);
         match m.tan {
             Tan::Stick => s[XI],
             Tan::Slip(_) => -(e.forces.f_t + ct * e.v_t) / kt,
@@ -639,8 +649,15 @@ impl<'a> Reference<'a> {
         };
         let (ep, em) = (shifted(1.0), shifted(-1.0));
         let dfn = (ep.fn_raw - em.fn_raw) / (2.0 * h);
-        let a_t = (ep.v_t - em.v_t) / (2.0 * h);
-        self.mu * dfn + sg * (self.model.kt * e.v_t + self.model.ct * a_t)
+        let (k_xi, rate, ct) = self.model.spring(e.depth);
+        // The damping force's rate: c_t dv_t/dt, and for Mindlin's c_t(delta) its own change.
+        let dct = if self.model.mindlin {
+            let c = |ev: &Eval| self.model.spring(ev.depth).2 * ev.v_t;
+            (c(&ep) - c(&em)) / (2.0 * h)
+        } else {
+            ct * (ep.v_t - em.v_t) / (2.0 * h)
+        };
+        self.mu * dfn + sg * (k_xi * rate * e.v_t + dct)
     }
 
     /// Fraction of `step` at which event `ev` first fires (its function turns positive),
@@ -762,7 +779,8 @@ pub(crate) fn integrate(
     scale[VX] = speed;
     scale[VY] = speed;
     scale[OM] = speed / r;
-    scale[XI] = force_scale / model.kt;
+    // Mindlin's xi is a force (section 14.4).
+    scale[XI] = force_scale / if model.mindlin { 1.0 } else { model.kt };
     scale[W_EL] = energy_in;
     scale[W_D] = energy_in;
     scale[W_T] = energy_in;
@@ -793,7 +811,7 @@ pub(crate) fn integrate(
     s[VY] = init.vy;
     s[OM] = init.omega;
     let touch = match shape {
-        Shape::Disc { .. } => Touch::Disc,
+        Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
         Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
     };
     let mut mode = Mode {
@@ -962,7 +980,8 @@ pub(crate) fn integrate(
                     -e.v_t.signum()
                 };
                 mode.tan = Tan::Slip(sg);
-                s[XI] = -(ode.mu * e.forces.fy * sg + model.ct * e.v_t) / model.kt;
+                let (kt, _, ct) = model.spring(e.depth);
+                s[XI] = -(ode.mu * e.forces.fy * sg + ct * e.v_t) / kt;
             }
             hold_tangential = true;
             chatter_t = 0;
@@ -1079,13 +1098,13 @@ fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
 /// Switches the mode at an event and sets the algebraic part of the state.
 fn apply(ode: &Reference, m: &mut Mode, ev: Event, s: &mut State, t: f64, tally: &mut Tally) {
     let model = ode.model;
-    let (kt, ct) = (model.kt, model.ct);
     let n = ode.verts.len().max(1);
     let e = ode.eval(m, s).1;
+    let (kt, _, ct) = model.spring(e.depth);
     match ev {
         Event::Touch => {
             m.touch = match model.scene.shape {
-                Shape::Disc { .. } => Touch::Disc,
+                Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
                 Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
             };
             m.clip_on = true;

@@ -1,0 +1,291 @@
+"""``restitution validate``: the Hertz-Mindlin sphere against the Chung & Ooi (2011) benchmark
+and Kharaz, Gorham & Salman's (2001) experiments (docs/model.md, section 14).
+
+Runs Tests 2, 3, 4 and 6 of the benchmark with its published inputs, and Test 4's alumina on
+the glass anvil of the experiments; writes one Parquet table per test, the benchmark's figures
+with the published curves (:mod:`restitution.study.published`) and rigid-body theory
+(kappa = 2/5) overlaid, and ``report.md`` with the deviations. Nothing is fitted to the
+published curves.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import polars as pl
+
+from .. import theory
+from ..runs.sweep import sweep
+from ..scene import Scene
+from ..shapes import Sphere
+from ..simulate import simulate
+from . import published
+from .figures import THEORY_STYLE, _plt
+
+#: (E in Pa, Poisson's ratio, density in kg/m^3), as Chung & Ooi give them.
+MATERIALS = {
+    "Al alloy (Test 2)": (70e9, 0.30, 2699.0),
+    "Mg alloy": (40e9, 0.35, 1800.0),
+    "alumina": (380e9, 0.23, 4000.0),
+    "cast iron": (100e9, 0.25, 7000.0),
+    "Al alloy": (70e9, 0.33, 2700.0),
+    "nylon": (2.5e9, 0.40, 1000.0),
+}
+#: The soda-lime glass anvil of Kharaz et al. (E, nu).
+GLASS = (70e9, 0.25)
+#: Incident angles of Test 4, from the normal (deg).
+ANGLES = np.arange(5.0, 86.0, 5.0)
+#: Contact time of an elastic Hertz impact in units of delta_max / v: (4/5) B(2/5, 1/2).
+HERTZ_TIME = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
+
+
+def sphere_scene(material: str, r: float, cor: float, mu: float, plate: tuple[float, float] | None = None,
+                 **changes: Any) -> Scene:
+    """A Hertz-Mindlin sphere of one of :data:`MATERIALS` (rigid plate unless ``plate``)."""
+    e, nu, rho = MATERIALS[material]
+    plate_e, plate_nu = plate if plate is not None else (None, None)
+    return Scene(shape=Sphere(r=r), normal_law="hertz", E=e, nu=nu, rho=rho, cor=cor, mu=mu,
+                 plate_E=plate_e, plate_nu=plate_nu, **changes)
+
+
+def test2() -> tuple[pl.DataFrame, dict[str, pl.DataFrame]]:
+    """Elastic normal impact on a rigid plane (R = 0.1 m, 0.2 m/s): the engine's largest overlap,
+    peak force and contact time against Hertz's closed forms; and each force-time trace."""
+    rows, traces = [], {}
+    r, v = 0.1, 0.2
+    for material in ("Al alloy (Test 2)", "Mg alloy"):
+        e, nu, rho = MATERIALS[material]
+        scene = sphere_scene(material, r, 1.0, 0.0, v=v)
+        rec = simulate(scene, 90.0, trace=True)
+        m = 4.0 / 3.0 * math.pi * r**3 * rho
+        e_star = e / (1.0 - nu * nu)
+        delta = (15.0 * m * v * v / (16.0 * e_star * math.sqrt(r))) ** 0.4
+        force = 4.0 / 3.0 * e_star * math.sqrt(r) * delta**1.5
+        engine = {"max_overlap": rec.max_depth, "peak_force": float(rec.trace["f_n"].max()),
+                  "contact_time": rec.contact_time}
+        hertz = {"max_overlap": delta, "peak_force": force, "contact_time": HERTZ_TIME * delta / v}
+        for q in engine:
+            rows.append({"material": material, "quantity": q, "engine": engine[q], "hertz": hertz[q],
+                         "deviation": engine[q] / hertz[q] - 1.0})
+        traces[material] = rec.trace.select("t", "f_n", "depth")
+    return pl.DataFrame(rows), traces
+
+
+def test3(cors: np.ndarray | None = None) -> pl.DataFrame:
+    """Normal impact with cor 0.2 ... 1 (R = 2.5 mm, 3.9 m/s): e_N against the requested cor."""
+    cors = np.round(np.arange(0.2, 1.0001, 0.1), 10) if cors is None else cors
+    frames = []
+    for material in ("alumina", "cast iron"):
+        base = sphere_scene(material, 2.5e-3, 1.0, 0.0, v=3.9)
+        df = sweep(base, theta_deg=90.0, cor=cors, progress=False)
+        frames.append(df.select(pl.lit(material).alias("material"), "cor", "e_n"))
+    return pl.concat(frames).with_columns((pl.col("e_n") - pl.col("cor")).alias("deviation"))
+
+
+def oblique(scene: Scene, label: str) -> pl.DataFrame:
+    """Test 4's oblique impacts at 5 ... 85 deg from the normal, no spin: e_t, the rebound spin,
+    the contact-patch rebound angle atan((v_t' + R omega') / v_n') and rigid-body theory."""
+    df = sweep(scene, theta_deg=90.0 - ANGLES, progress=False)
+    r, mu = scene.r, scene.mu
+    th = df["theta_deg"].to_numpy()
+    e_n = df["e_n"].to_numpy()
+    patch = np.degrees(np.arctan((df["vx_out"].to_numpy() + r * df["omega_out"].to_numpy())
+                                 / df["vy_out"].to_numpy()))
+    return df.select(
+        pl.lit(label).alias("case"), (90.0 - pl.col("theta_deg")).alias("incidence_deg"), "e_n", "e_t",
+        "omega_out", "energy_residual",
+    ).with_columns(
+        pl.Series("rebound_angle_deg", patch),
+        pl.Series("e_t_theory", theory.e_t(th, mu, e_n, r=r, v=scene.v, kappa="sphere")),
+        pl.Series("omega_theory", theory.omega_out(th, mu, e_n, r=r, v=scene.v, kappa="sphere")),
+    )
+
+
+def test4() -> pl.DataFrame:
+    """Test 4 (3.9 m/s, cor 0.98, mu 0.092, R = 2.5 mm, rigid plane) for alumina and Al alloy, and
+    the Kharaz run: alumina on the glass anvil (E 70 GPa, nu 0.25)."""
+    runs = [("oxide", sphere_scene("alumina", 2.5e-3, 0.98, 0.092, v=3.9)),
+            ("alloy", sphere_scene("Al alloy", 2.5e-3, 0.98, 0.092, v=3.9)),
+            ("kharaz", sphere_scene("alumina", 2.5e-3, 0.98, 0.092, plate=GLASS, v=3.9))]
+    return pl.concat([oblique(scene, label) for label, scene in runs])
+
+
+def test6() -> pl.DataFrame:
+    """Test 6: head-on (v_n = 0.2 m/s), initial spin omega0 = (v_n / R) tan(k 5 deg), k = 1 ... 17,
+    cor 0.5, mu 0.4, R = 0.1 m: beta (the record's) against 3.5 mu (1 + e) v_n / V, V = R omega0."""
+    r, v_n, mu = 0.1, 0.2, 0.4
+    omegas = v_n / r * np.tan(np.radians(5.0 * np.arange(1, 18)))
+    frames = []
+    for label, material in (("alloy", "Al alloy"), ("nylon", "nylon")):
+        scene = sphere_scene(material, r, 0.5, mu, v=v_n)
+        df = sweep(scene, theta_deg=90.0, omega_in=omegas, progress=False)
+        frames.append(df.select(
+            pl.lit(label).alias("case"), "omega_in", "e_n", "beta",
+            (3.5 * mu * (1.0 + pl.col("e_n")) * v_n / (r * pl.col("omega_in"))).alias("x"),
+        ))
+    return pl.concat(frames)
+
+
+def _deviation(ours_x: np.ndarray, ours_y: np.ndarray, curve: tuple[tuple[float, ...], ...]) -> float:
+    """Largest |ours - published| at the published abscissae inside our range (linear interpolation)."""
+    x, y = (np.asarray(c, dtype=float) for c in curve)
+    order = np.argsort(ours_x)
+    inside = (x >= ours_x.min()) & (x <= ours_x.max())
+    return float(np.max(np.abs(np.interp(x[inside], ours_x[order], ours_y[order]) - y[inside])))
+
+
+def deviations(t4: pl.DataFrame, t6: pl.DataFrame) -> pl.DataFrame:
+    """Largest deviation of each of our curves from each published one."""
+    rows = []
+    quantities = (("e_t", published.TEST4_E_T), ("omega_out", published.TEST4_OMEGA),
+                  ("rebound_angle_deg", published.TEST4_REBOUND_ANGLE))
+    for ours, against in (("oxide", "oxide"), ("alloy", "alloy"), ("oxide", "experiment"),
+                          ("kharaz", "experiment")):
+        sub = t4.filter(pl.col("case") == ours)
+        for q, table in quantities:
+            if against in table:
+                rows.append({"test": 4, "ours": ours, "published": against, "quantity": q,
+                             "max_abs_deviation": _deviation(sub["incidence_deg"].to_numpy(), sub[q].to_numpy(),
+                                                             table[against])})
+    for case in ("alloy", "nylon"):
+        sub = t6.filter(pl.col("case") == case)
+        rows.append({"test": 6, "ours": case, "published": case, "quantity": "beta",
+                     "max_abs_deviation": _deviation(sub["x"].to_numpy(), sub["beta"].to_numpy(),
+                                                     published.TEST6_BETA[case])})
+    return pl.DataFrame(rows)
+
+
+PUBLISHED_STYLE: dict[str, Any] = dict(ls="none", marker="s", ms=4, mfc="none")
+EXPERIMENT_STYLE: dict[str, Any] = dict(ls="none", marker="o", ms=5, color="black")
+
+
+def figure_test2(traces: dict[str, pl.DataFrame], table: pl.DataFrame, path: Path) -> None:
+    """Force against time, with Hertz's peak force and contact time marked."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for material, tr in traces.items():
+        line, = ax.plot(tr["t"] * 1e6, tr["f_n"] / 1e3, label=f"{material} (engine)")
+        h = {row["quantity"]: row["hertz"] for row in table.filter(pl.col("material") == material).iter_rows(named=True)}
+        ax.axhline(h["peak_force"] / 1e3, **{**THEORY_STYLE, "color": line.get_color()})
+        ax.axvline(h["contact_time"] * 1e6, **{**THEORY_STYLE, "color": line.get_color()})
+    ax.set(xlabel="time (us)", ylabel="normal force (kN)",
+           title="Test 2: elastic sphere on a rigid plane (dashed: Hertz's peak force, contact time)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def figure_test3(t3: pl.DataFrame, path: Path) -> None:
+    """e_N against the requested cor."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(5, 4))
+    ax.plot([0, 1], [0, 1], **THEORY_STYLE, label="e_N = cor")
+    for material in t3["material"].unique(maintain_order=True):
+        sub = t3.filter(pl.col("material") == material)
+        ax.plot(sub["cor"], sub["e_n"], "o", mfc="none", label=material)
+    ax.set(xlabel="requested cor", ylabel="$e_N$ (3.9 m/s)", title="Test 3: head-on restitution")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def figure_test4(t4: pl.DataFrame, cases: tuple[str, ...], path: Path, title: str) -> None:
+    """e_t, rebound spin and contact-patch rebound angle against the incident angle, with the
+    published DEM curves, Kharaz's measurements and rigid-body theory."""
+    plt = _plt()
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    panels = (("e_t", published.TEST4_E_T, "e_t_theory", "$e_t$"),
+              ("omega_out", published.TEST4_OMEGA, "omega_theory", r"rebound spin $\omega'$ (rad/s)"),
+              ("rebound_angle_deg", published.TEST4_REBOUND_ANGLE, None, "contact-patch rebound angle (deg)"))
+    for ax, (q, table, th, label) in zip(axes, panels):
+        for case in cases:
+            sub = t4.filter(pl.col("case") == case)
+            line, = ax.plot(sub["incidence_deg"], sub[q], "-", label=f"engine: {case}")
+            if case in table:
+                ax.plot(*table[case], color=line.get_color(), **PUBLISHED_STYLE,
+                        label=f"Chung & Ooi DEM: {case}")
+        ax.plot(*table["experiment"], **EXPERIMENT_STYLE, label="Kharaz et al. 2001")
+        if th is not None:
+            sub = t4.filter(pl.col("case") == cases[0])
+            ax.plot(sub["incidence_deg"], sub[th], **THEORY_STYLE, label="rigid body, kappa = 2/5")
+        ax.set(xlabel="incident angle from the normal (deg)", ylabel=label)
+    axes[0].legend(fontsize=7)
+    fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def figure_test6(t6: pl.DataFrame, path: Path) -> None:
+    """beta against 3.5 mu (1 + e) v_n / V, with the published DEM curves."""
+    plt = _plt()
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for case in ("alloy", "nylon"):
+        sub = t6.filter(pl.col("case") == case)
+        line, = ax.plot(sub["x"], sub["beta"], "-", label=f"engine: {case}")
+        ax.plot(*published.TEST6_BETA[case], color=line.get_color(), **PUBLISHED_STYLE,
+                label=f"Chung & Ooi DEM: {case}")
+    ax.set(xscale="log", xlabel=r"$3.5\,\mu(1+e)\,v_n / V$", ylabel=r"$\beta$",
+           title="Test 6: head-on impact of a spinning sphere")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)
+
+
+def report(t2: pl.DataFrame, t3: pl.DataFrame, t4: pl.DataFrame, dev: pl.DataFrame) -> str:
+    """The deviations in words and tables (markdown)."""
+    sliding = t4.filter((pl.col("case") != "kharaz") & (pl.col("incidence_deg") >= 35.0))
+    lines = [
+        "# Validation: Chung & Ooi (2011) and Kharaz et al. (2001)", "",
+        "Hertz-Mindlin sphere, Gear-5 at dt_factor 0.01; published curves are third-party "
+        "digitisations (docs/model.md, section 14.7). Nothing is fitted to them.", "",
+        "## Test 2: Hertz's closed forms", "",
+        _markdown(t2.select("material", "quantity", "deviation")), "",
+        f"## Test 3: largest |e_N - cor| = {t3['deviation'].abs().max():.2e}", "",
+        "## Test 4, gross sliding (>= 35 deg) against rigid-body theory", "",
+        f"largest |e_t - theory| = {(sliding['e_t'] - sliding['e_t_theory']).abs().max():.2e}, "
+        f"largest relative spin deviation = "
+        f"{((sliding['omega_out'] / sliding['omega_theory']) - 1).abs().max():.2e}", "",
+        "## Against the published curves (largest absolute deviation at their points)", "",
+        _markdown(dev), "",
+    ]
+    return "\n".join(lines)
+
+
+def _markdown(df: pl.DataFrame) -> str:
+    head = "| " + " | ".join(df.columns) + " |\n|" + "---|" * df.width
+    rows = ["| " + " | ".join(f"{v:.3g}" if isinstance(v, float) else str(v) for v in row) + " |"
+            for row in df.iter_rows()]
+    return "\n".join([head, *rows])
+
+
+def write_validation(out: Path) -> list[Path]:
+    """Runs every test and writes tables, figures and ``report.md`` to ``out``; returns the paths."""
+    out.mkdir(parents=True, exist_ok=True)
+    t2, traces = test2()
+    t3, t4, t6 = test3(), test4(), test6()
+    dev = deviations(t4, t6)
+    paths = []
+    for name, df in (("test2", t2), ("test3", t3), ("test4", t4), ("test6", t6), ("deviations", dev)):
+        paths.append(out / f"{name}.parquet")
+        df.write_parquet(paths[-1])
+    figures = (
+        ("test2.png", lambda p: figure_test2(traces, t2, p)),
+        ("test3.png", lambda p: figure_test3(t3, p)),
+        ("test4.png", lambda p: figure_test4(t4, ("oxide", "alloy"), p, "Test 4: oblique impacts on a rigid plane")),
+        ("kharaz.png", lambda p: figure_test4(t4, ("kharaz",), p,
+                                              "Alumina on the glass anvil (E 70 GPa, nu 0.25) vs Kharaz et al.")),
+        ("test6.png", lambda p: figure_test6(t6, p)),
+    )
+    for name, draw in figures:
+        paths.append(out / name)
+        draw(paths[-1])
+    paths.append(out / "report.md")
+    paths[-1].write_text(report(t2, t3, t4, dev))
+    return paths
