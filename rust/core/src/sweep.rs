@@ -1,8 +1,9 @@
 //! Many impacts in parallel (rayon over cases). Every case runs the very same code as a single
 //! [`simulate`](crate::simulate) call, so results do not depend on the thread count.
 
-use crate::error::Result;
-use crate::impact::{simulate, Record};
+use crate::cancel::Cancel;
+use crate::error::{Error, Result};
+use crate::impact::{simulate_cancellable, Record};
 use crate::model::{Initial, Scene};
 use rayon::prelude::*;
 
@@ -23,10 +24,26 @@ pub fn run_cases(
     cases: &[Case],
     threads: usize,
 ) -> std::result::Result<Vec<Record>, (usize, crate::Error)> {
+    run_cases_cancellable(cases, threads, Cancel::never())
+}
+
+/// As [`run_cases`], interruptible: once `cancel` is set every worker abandons its impact
+/// within [`crate::POLL_STEPS`] steps and starts no new case, and the result is
+/// `Err((i, Error::Interrupted))`, `i` the first case that did not finish.
+pub fn run_cases_cancellable(
+    cases: &[Case],
+    threads: usize,
+    cancel: &Cancel,
+) -> std::result::Result<Vec<Record>, (usize, crate::Error)> {
     let work = || {
         cases
             .par_iter()
-            .map(|c| simulate(&c.scene, &c.init))
+            .map(|c| {
+                if cancel.is_cancelled() {
+                    return Err(Error::Interrupted);
+                }
+                simulate_cancellable(&c.scene, &c.init, cancel)
+            })
             .collect::<Vec<Result<Record>>>()
     };
     let results = if threads == 0 {
@@ -37,6 +54,12 @@ pub fn run_cases(
             Err(_) => work(),
         }
     };
+    if let Some(i) = results
+        .iter()
+        .position(|r| matches!(r, Err(Error::Interrupted)))
+    {
+        return Err((i, Error::Interrupted));
+    }
     results
         .into_iter()
         .enumerate()
