@@ -21,6 +21,9 @@ impl From<PyCoreError> for PyErr {
             (err @ core::Error::InvalidParameter { .. }, Some(i)) => {
                 PyValueError::new_err(format!("case {i}: {err}"))
             }
+            (core::Error::Interrupted, _) => {
+                pyo3::exceptions::PyKeyboardInterrupt::new_err("interrupted")
+            }
         }
     }
 }
@@ -147,6 +150,7 @@ fn build_cases(
                     integrator: parse_integrator(integ[i])?,
                     dt_factor: dtf,
                     overlap: core::OverlapMethod::Auto,
+                    max_steps: None,
                 };
                 Ok(core::Case {
                     scene,
