@@ -120,25 +120,35 @@ def test_cases_file_relative_to_the_config(tmp_path: Path) -> None:
 
 # --- every Scene field: a TOML key that round-trips and that the dataset digest sees -----------
 
-def _alternative(name: str, value: object) -> object:
-    """A valid value other than the default, found generically so that a new field is covered."""
+#: Scenes a field is changed from: the default, and one where the Hertz sphere's fields apply.
+BASES = (rs.Scene(), rs.Scene(shape=rs.Sphere(r=0.0025), normal_law="hertz", E=3.8e11, rho=4000.0, nu=0.23,
+                              cor=0.98, mu=0.092, v=3.9))
+
+
+def _candidates(name: str, value: object) -> list[object]:
+    """Values other than ``value`` to try, found generically so that a new field is covered."""
     if name == "shape":
-        return rs.RegularPolygon(r=0.01, n=12, phi0_deg=3.0)
-    if name in rs.Scene.__dataclass_fields__ and isinstance(value, str):
-        for alt in _engine.CHOICES[name]:
-            if alt != value:
-                try:
-                    rs.Scene(**{name: alt})
-                    return alt
-                except ValueError:
-                    continue
+        return [rs.RegularPolygon(r=0.01, n=12, phi0_deg=3.0), rs.Sphere(r=0.003)]
+    if isinstance(value, str):
+        return [alt for alt in _engine.CHOICES[name] if alt != value]
     if value is None:
-        return 0.5 * rs.Scene().E  # the optional stiffnesses and damping accept this
+        return [0.3, 0.5, 1.0, 1e3, 0.5 * rs.Scene().E]
     if isinstance(value, bool):
-        return not value
+        return [not value]
     if isinstance(value, int):
-        return value * 2 if value else 1
-    return float(value) * 0.5 if value else 0.1
+        return [value * 2 if value else 1]
+    return [float(value) * 0.5 if value else 0.1, float(value) * 1.5]
+
+
+def _changed(name: str) -> tuple[rs.Scene, rs.Scene]:
+    """(a base scene, the same with ``name`` changed to another valid value)."""
+    for base in BASES:
+        for alt in _candidates(name, getattr(base, name)):
+            try:
+                return base, base.replace(**{name: alt})
+            except ValueError:
+                continue
+    raise AssertionError(f"no valid alternative value found for `{name}`: extend _candidates")
 
 
 def _toml(value: object) -> str:
@@ -163,8 +173,7 @@ def _write_config(path: Path, scene: rs.Scene) -> Path:
 
 @pytest.mark.parametrize("name", [f.name for f in dataclasses.fields(rs.Scene)])
 def test_every_scene_field_round_trips_through_toml_and_changes_the_digest(tmp_path: Path, name: str) -> None:
-    default = rs.Scene()
-    changed = default.replace(**{name: _alternative(name, getattr(default, name))})
+    default, changed = _changed(name)
     assert getattr(changed, name) != getattr(default, name)
     spec, _ = load_config(_write_config(tmp_path / "c.toml", changed))
     assert spec.scene == changed

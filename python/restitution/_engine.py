@@ -28,7 +28,7 @@ TRACE_COLUMNS: tuple[str, ...] = tuple(_core.TRACE_COLUMNS)
 CHOICES: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.CHOICES.items()}
 #: Optional parameters: None in Python, NaN ("unset") in the engine's columns; their range.
 OPTIONAL = {"kn": "> 0", "cn": ">= 0", "kt": "> 0", "nu": "in (-1, 0.5]", "plate_E": "> 0",
-            "plate_nu": "in (-1, 0.5]", "cor": "in [0.01, 1]"}
+            "plate_nu": "in (-1, 0.5]", "cor": "in [0.01, 1]", "max_steps": "a whole number >= 1"}
 
 
 def real(name: str, value: Any) -> float:

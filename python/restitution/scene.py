@@ -87,6 +87,11 @@ class Scene:
     overlap: str = "auto"
     """Overlap with the plate: "auto" (closed-form segment for a disc, half-plane clip for a
     polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""
+    max_steps: int | None = None
+    """Most integration steps one impact may take (>= 1): past it the impact ends with
+    ``timed_out = True`` and ``stop = "step_budget"``. None: the default budget, a fixed multiple
+    of the contact's own number of steps (docs/model.md, "Bounded work"); every record says
+    which budget it ran under (``step_budget``)."""
 
     def __post_init__(self) -> None:
         # Python checks only what the engine cannot: types and choice names. Every rule on

@@ -55,7 +55,13 @@ class Record:
     energy_residual: float
     """(energy_out - energy_in - work_normal - work_friction) / energy_in."""
     separated: bool
+    """The particle left the plate and no part of it can reach the plate again."""
     timed_out: bool
+    """The impact ended on a budget before separating (``stop`` says which)."""
+    step_budget: int
+    """The step budget it ran under: ``Scene.max_steps`` or the default (``steps <= step_budget``)."""
+    stop: str
+    """Why it ended: "separated", "step_budget", "contact_time_budget" or "non_finite"."""
     trace: pl.DataFrame | None = None
     """Per-step history when ``simulate(..., trace=True)``: t, x, y, phi, vx, vy, omega, f_n, f_t,
     area, depth, xi, stick (0 none, 1 stick, 2 slip)."""

@@ -19,9 +19,10 @@
 //! from the plate; spin is counter-clockwise positive; units are per unit depth.
 #![warn(missing_docs)]
 
-// Layers, each using only those below it: `error`, `geometry` (shapes and their overlap with
+// Layers, each using only those below it: `error` and `cancel`, `geometry` (shapes and their overlap with
 // the plate), `model` (scene and derived model), `law` (the contact forces), `integrate` (how
 // time advances), `impact` (one impact to a record), `sweep` (many impacts).
+pub mod cancel;
 pub mod error;
 pub mod geometry;
 pub mod impact;
@@ -30,11 +31,13 @@ pub mod law;
 pub mod model;
 pub mod sweep;
 
+pub use cancel::{Cancel, POLL_STEPS};
 pub use error::{Error, Result};
 pub use geometry::{ConvexObstacle, Corners, Overlap, OverlapMethod, Patch, Polygon, Shape};
 pub use impact::{
-    estimate_max_depth, simulate, simulate_model, simulate_with_trace, Cell, Record, Trace,
-    RECORD_COLUMNS,
+    contact_steps, default_step_budget, estimate_max_depth, simulate, simulate_cancellable,
+    simulate_model, simulate_with_trace, simulate_with_trace_cancellable, Cell, Record, StopReason,
+    Trace, BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_STEPS_PER_CONTACT, RECORD_COLUMNS,
 };
 pub use integrate::adaptive::{
     simulate_reference, simulate_reference_with_trace, ReferenceOptions,
@@ -45,4 +48,4 @@ pub use model::{
     scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, Hertz, InertiaModel,
     Initial, Integrator, Model, NormalLaw, Scene, TangentialModel, CASE_COLUMNS, CHOICES,
 };
-pub use sweep::{check_cases, run_cases, Case};
+pub use sweep::{check_cases, run_cases, run_cases_cancellable, Case};

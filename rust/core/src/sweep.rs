@@ -1,8 +1,9 @@
 //! Many impacts in parallel (rayon over cases). Every case runs the very same code as a single
 //! [`simulate`](crate::simulate) call, so results do not depend on the thread count.
 
+use crate::cancel::Cancel;
 use crate::error::{Error, Result};
-use crate::impact::{simulate, Record};
+use crate::impact::{simulate_cancellable, Record};
 use crate::model::{check_case, Initial, Scene};
 use rayon::prelude::*;
 
@@ -28,10 +29,7 @@ fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
 
 /// Checks every rule of every case without running it ([`check_case`]), in parallel; the
 /// error of the first failing case comes with its index.
-pub fn check_cases(
-    cases: &[Case],
-    threads: usize,
-) -> std::result::Result<(), (usize, Error)> {
+pub fn check_cases(cases: &[Case], threads: usize) -> std::result::Result<(), (usize, Error)> {
     let results = on_threads(threads, || {
         cases
             .par_iter()
@@ -52,13 +50,35 @@ pub fn run_cases(
     cases: &[Case],
     threads: usize,
 ) -> std::result::Result<Vec<Record>, (usize, Error)> {
+    run_cases_cancellable(cases, threads, Cancel::never())
+}
+
+/// As [`run_cases`], interruptible: once `cancel` is set every worker abandons its impact
+/// within [`crate::POLL_STEPS`] steps and starts no new case, and the result is
+/// `Err((i, Error::Interrupted))`, `i` the first case that did not finish.
+pub fn run_cases_cancellable(
+    cases: &[Case],
+    threads: usize,
+    cancel: &Cancel,
+) -> std::result::Result<Vec<Record>, (usize, Error)> {
     let work = || {
         cases
             .par_iter()
-            .map(|c| simulate(&c.scene, &c.init))
+            .map(|c| {
+                if cancel.is_cancelled() {
+                    return Err(Error::Interrupted);
+                }
+                simulate_cancellable(&c.scene, &c.init, cancel)
+            })
             .collect::<Vec<Result<Record>>>()
     };
     let results = on_threads(threads, work);
+    if let Some(i) = results
+        .iter()
+        .position(|r| matches!(r, Err(Error::Interrupted)))
+    {
+        return Err((i, Error::Interrupted));
+    }
     results
         .into_iter()
         .enumerate()

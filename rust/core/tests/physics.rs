@@ -54,7 +54,7 @@ fn sci(values: &[f64]) -> String {
 fn invalid_name(r: Result<Record, Error>) -> String {
     match r {
         Err(Error::InvalidParameter { name, .. }) => name,
-        Ok(rec) => panic!("expected an InvalidParameter error, got {rec:?}"),
+        other => panic!("expected an InvalidParameter error, got {other:?}"),
     }
 }
 
@@ -675,11 +675,19 @@ fn overdamped_creep_times_out_instead_of_hanging() {
         assert!(x.is_finite());
     }
     assert!(rec.energy_out <= rec.energy_in);
-    // The budget is exactly 100 estimated contact times pi depth / |v_y| (plus 10 steps).
+    // The budget is 100 estimated contact times pi depth / |v_y| of contact: the contact
+    // stops at the first step past it, well within the step budget.
     let model = Model::new(&scene).unwrap();
     let t_est = PI * estimate_max_depth(&model, &init).unwrap() / init.vy.abs();
-    let budget = (100.0 * t_est / model.dt).ceil() as u64 + 10;
-    assert_eq!(rec.steps, budget);
+    assert_eq!(rec.stop, restitution_core::StopReason::ContactTimeBudget);
+    assert!(
+        rec.contact_time > 100.0 * t_est,
+        "{}",
+        rec.contact_time / t_est
+    );
+    assert!(rec.contact_time <= 100.0 * t_est + model.dt);
+    assert_eq!(rec.steps, (100.0 * t_est / model.dt).floor() as u64 + 1);
+    assert!(rec.steps < rec.step_budget);
 }
 
 #[test]

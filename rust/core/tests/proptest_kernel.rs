@@ -57,6 +57,7 @@ fn run(c: &Case) -> Option<Record> {
             );
             None
         }
+        Err(e) => panic!("unexpected error {e}"),
     }
 }
 

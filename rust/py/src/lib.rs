@@ -5,7 +5,7 @@
 //! `restitution.RestitutionError` carrying the parameter, the value and the case.
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
-use pyo3::exceptions::{PyKeyError, PyValueError};
+use pyo3::exceptions::{PyKeyError, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use restitution_core as core;
@@ -33,7 +33,11 @@ impl From<PyCoreError> for PyErr {
             name,
             value,
             expected,
-        } = &err;
+        } = &err
+        else {
+            // Error::Interrupted: the engine stopped because Ctrl-C set its token.
+            return PyKeyboardInterrupt::new_err("interrupted");
+        };
         Python::attach(|py| {
             let class = py
                 .import("restitution.errors")?
@@ -137,6 +141,16 @@ fn records_to_dict<'py>(py: Python<'py>, recs: &[core::Record]) -> PyResult<Boun
                     }),
                 ),
             )?,
+            core::Cell::Name(_) => out.set_item(
+                name,
+                cells
+                    .iter()
+                    .map(|c| match c[k] {
+                        core::Cell::Name(s) => s,
+                        _ => "",
+                    })
+                    .collect::<Vec<_>>(),
+            )?,
             core::Cell::Bool(_) => out.set_item(
                 name,
                 PyArray1::from_iter(
@@ -163,6 +177,43 @@ fn floats<'py>(
     )
 }
 
+/// Runs `work` with the GIL released on a worker thread while this thread watches for Ctrl-C:
+/// every 20 ms it takes the GIL and lets Python run its signal handlers (they only run on the
+/// main thread, and not while the engine holds it). On KeyboardInterrupt (or any error a
+/// handler raises) it sets the engine's token, waits for the worker to stop (within
+/// `POLL_STEPS` steps) and raises that error; the work's result is dropped.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&core::Cancel) -> T + Send,
+) -> PyResult<T> {
+    let cancel = core::Cancel::new();
+    let watcher = std::thread::current();
+    std::thread::scope(|scope| {
+        let worker = scope.spawn(|| {
+            let out = work(&cancel);
+            watcher.unpark();
+            out
+        });
+        loop {
+            py.detach(|| {
+                if !worker.is_finished() {
+                    std::thread::park_timeout(std::time::Duration::from_millis(20));
+                }
+            });
+            if worker.is_finished() {
+                return Ok(worker
+                    .join()
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+            }
+            if let Err(err) = py.check_signals() {
+                cancel.cancel();
+                let _ = py.detach(|| worker.join());
+                return Err(err);
+            }
+        }
+    })
+}
+
 /// Runs one impact per row of `columns` in parallel on `threads` threads (0: all cores) with
 /// the GIL released. Returns the record columns.
 #[pyfunction]
@@ -174,9 +225,10 @@ fn run_cases<'py>(
     threads: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cases = read_cases(columns, vertices)?;
-    let recs = py
-        .detach(|| core::run_cases(&cases, threads))
-        .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
+    let recs = interruptible(py, |cancel| {
+        core::run_cases_cancellable(&cases, threads, cancel)
+    })?
+    .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
     records_to_dict(py, &recs)
 }
 
@@ -215,9 +267,10 @@ fn trace_case<'py>(
             cases.len()
         )));
     };
-    let (rec, tr) = py
-        .detach(|| core::simulate_with_trace(&case.scene, &case.init))
-        .map_err(|e| PyCoreError(e, Some(0)))?;
+    let (rec, tr) = interruptible(py, |cancel| {
+        core::simulate_with_trace_cancellable(&case.scene, &case.init, cancel)
+    })?
+    .map_err(|e| PyCoreError(e, Some(0)))?;
     let out = PyDict::new(py);
     let floats = [
         tr.t, tr.x, tr.y, tr.phi, tr.vx, tr.vy, tr.omega, tr.f_n, tr.f_t, tr.area, tr.depth, tr.xi,

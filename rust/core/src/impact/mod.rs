@@ -1,6 +1,7 @@
 //! One impact, from first touch to separation: the record (docs/model.md, section 9) and an optional trace.
 
-use crate::error::{Error, Result};
+use crate::cancel::Cancel;
+use crate::error::Result;
 use crate::geometry::Shape;
 use crate::integrate::events;
 use crate::integrate::{Gear5, Stepper, Verlet};
@@ -8,24 +9,37 @@ use crate::law::{Contact, DiscPlate, Dof, Forces, PlateGeometry, ShapePlate, Sph
 use crate::model::{Initial, Integrator, Model, Scene};
 use std::f64::consts::PI;
 
+pub mod budget;
+mod flight;
 pub mod record;
 
-pub use record::{estimate_max_depth, Cell, Record, Trace, RECORD_COLUMNS, TIMEOUT_CONTACT_TIMES};
-
-/// Smallest estimated maximal depth, in units of the spacing of doubles at the centre's height
-/// (ulp(r)), that an impact may have: below it the centre's height cannot resolve the overlap
-/// (a grazing impact at theta ~ 1e-10 deg moves the centre by a few ulps) and the contact law
-/// would act on round-off. 2^20 ulps keep the depth to ~1e-6 relative.
-pub const MIN_DEPTH_ULPS: f64 = 1_048_576.0;
-
-/// Most fixed steps an estimated contact may need (~10 s of one core): beyond it a scene is
-/// refused with the cure named rather than run for hours (a tiny dt_factor, a creeping contact).
-pub const MAX_STEPS_PER_CONTACT: f64 = 1e8;
+pub use budget::{
+    budget_for, contact_steps, default_step_budget, reference_contact_steps, step_budget,
+    BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_STEPS_PER_CONTACT, MIN_DEPTH_ULPS,
+};
+pub use record::{
+    estimate_max_depth, Cell, Record, StopReason, Trace, RECORD_COLUMNS, TIMEOUT_CONTACT_TIMES,
+};
 
 /// Largest local error per step that Gear-5 accepts in a polygon's contact, relative to the
 /// estimated largest depth (x and y; phi in units of r): steps in which the force changes
-/// faster than the step resolves are halved until they meet it.
+/// faster than the step resolves are halved until they meet it. Never below what double
+/// precision resolves at the centre's height (see [`tolerance`]).
 pub const ERROR_TOLERANCE: f64 = 1e-12;
+
+/// Spacings of doubles at the centre's height below which no local error is asked of the
+/// step control: an error estimate (a difference of positions ~r) finer than a few ulp(r) is
+/// round-off, and halving the step cannot lower it. Without the floor a stiff, slow contact
+/// (depth ~1e-8 m at r = 0.01 m) asks 1e-20 m, below ulp(0.01 m) = 1.7e-18 m, and every step
+/// whose estimate carries round-off would be halved down to the smallest (dt / 1024). (In the
+/// rows of issue 14 Gear-5's estimate stayed below even that: the floor changed no step there.)
+pub const TOLERANCE_FLOOR_ULPS: f64 = 64.0;
+
+/// The step control's tolerance in the centre's height (m): [`ERROR_TOLERANCE`] of the depth,
+/// at least [`TOLERANCE_FLOOR_ULPS`] spacings of doubles at height r.
+pub fn tolerance(depth_scale: f64, r: f64) -> f64 {
+    (ERROR_TOLERANCE * depth_scale).max(TOLERANCE_FLOOR_ULPS * f64::EPSILON * r)
+}
 
 /// Where in the last step the depth crossed zero, by linear interpolation (0 when the two
 /// depths are equal, e.g. both exactly zero: never 0 / 0).
@@ -41,83 +55,97 @@ fn crossing_fraction(prev_depth: f64, depth: f64) -> f64 {
 
 /// Simulates one impact.
 pub fn simulate(scene: &Scene, init: &Initial) -> Result<Record> {
+    simulate_cancellable(scene, init, Cancel::never())
+}
+
+/// Simulates one impact; returns `Err(Error::Interrupted)` soon after `cancel` is set
+/// (polled every [`crate::POLL_STEPS`] steps).
+pub fn simulate_cancellable(scene: &Scene, init: &Initial, cancel: &Cancel) -> Result<Record> {
     let model = Model::new(scene)?;
-    run(&model, init, None)
+    run(&model, init, None, cancel)
 }
 
 /// Simulates one impact of an already derived model, without [`Model::new`]'s checks of
 /// `dt_factor` (used to measure the stability bound above it; see `tests/stability.rs`).
 pub fn simulate_model(model: &Model, init: &Initial) -> Result<Record> {
-    run(model, init, None)
+    run(model, init, None, Cancel::never())
 }
 
 /// Simulates one impact and records every step.
 pub fn simulate_with_trace(scene: &Scene, init: &Initial) -> Result<(Record, Trace)> {
+    simulate_with_trace_cancellable(scene, init, Cancel::never())
+}
+
+/// As [`simulate_with_trace`], interruptible like [`simulate_cancellable`].
+pub fn simulate_with_trace_cancellable(
+    scene: &Scene,
+    init: &Initial,
+    cancel: &Cancel,
+) -> Result<(Record, Trace)> {
     let model = Model::new(scene)?;
     let mut trace = Trace::default();
-    let rec = run(&model, init, Some(&mut trace))?;
+    let rec = run(&model, init, Some(&mut trace), cancel)?;
     Ok((rec, trace))
 }
 
-fn run(model: &Model, init: &Initial, trace: Option<&mut Trace>) -> Result<Record> {
+fn run(
+    model: &Model,
+    init: &Initial,
+    trace: Option<&mut Trace>,
+    cancel: &Cancel,
+) -> Result<Record> {
     model.check_initial(init)?;
     let scene = &model.scene;
     let depth_est = estimate_max_depth(model, init)?;
-    let resolution = MIN_DEPTH_ULPS * f64::EPSILON * model.r;
-    if depth_est < resolution {
-        return Err(Error::invalid(
-            "v",
-            init.vx.hypot(init.vy),
-            format!(
-                "large enough that the estimated depth ({depth_est:e} m, at the normal speed \
-                 v sin(theta) = {:e} m/s) resolves in double precision (>= {resolution:e} m at \
-                 r = {} m): raise theta_deg or v, or lower E",
-                init.vy.abs(),
-                model.r
-            ),
-        ));
-    }
-    let t_est = PI * depth_est / init.vy.abs();
-    let steps_per_contact = t_est / model.dt;
-    if scene.integrator != Integrator::Reference && steps_per_contact > MAX_STEPS_PER_CONTACT {
-        return Err(Error::invalid(
-            "dt_factor",
-            scene.dt_factor,
-            format!(
-                "large enough that a contact takes at most {MAX_STEPS_PER_CONTACT:e} steps (this \
-                 scene needs ~{steps_per_contact:.1e}: raise dt_factor, theta_deg or v, or use \
-                 integrator \"reference\")"
-            ),
-        ));
-    }
-    let max_steps = (TIMEOUT_CONTACT_TIMES * t_est / model.dt).ceil().min(1e12) as u64 + 10;
-    let q0 = [0.0, scene.shape.touch_height(init.phi0), init.phi0];
-    let v0 = [init.vx, init.vy, init.omega];
-    match scene.integrator {
-        Integrator::Gear5 => Ok(integrate(
-            model,
-            init,
-            Gear5::new(q0, v0, model.dt),
-            max_steps,
-            depth_est,
-            trace,
-        )),
-        Integrator::Verlet => Ok(integrate(
-            model,
-            init,
-            Verlet::new(q0, v0, model.dt),
-            max_steps,
-            depth_est,
-            trace,
-        )),
-        Integrator::Reference => Ok(crate::integrate::adaptive::integrate(
+    budget::check_resolution(model, init, depth_est)?;
+    if scene.integrator == Integrator::Reference {
+        return crate::integrate::adaptive::integrate(
             model,
             init,
             depth_est,
             &crate::integrate::adaptive::ReferenceOptions::default(),
             trace,
-        )),
+            cancel,
+        );
     }
+    budget::check_contact_steps(model, init, depth_est)?;
+    let limits = Limits {
+        max_steps: step_budget(model, init, depth_est),
+        contact_time: TIMEOUT_CONTACT_TIMES * PI * depth_est / init.vy.abs(),
+        depth_scale: depth_est,
+    };
+    let q0 = [0.0, scene.shape.touch_height(init.phi0), init.phi0];
+    let v0 = [init.vx, init.vy, init.omega];
+    match scene.integrator {
+        Integrator::Verlet => integrate(
+            model,
+            init,
+            Verlet::new(q0, v0, model.dt),
+            &limits,
+            trace,
+            cancel,
+        ),
+        _ => integrate(
+            model,
+            init,
+            Gear5::new(q0, v0, model.dt),
+            &limits,
+            trace,
+            cancel,
+        ),
+    }
+}
+
+/// The budgets of one fixed-step impact.
+#[derive(Debug, Clone, Copy)]
+struct Limits {
+    /// Most steps ([`step_budget`]).
+    max_steps: u64,
+    /// Most contact time, summed over contacts (s): [`TIMEOUT_CONTACT_TIMES`] estimated
+    /// contact times.
+    contact_time: f64,
+    /// The estimated largest depth (m), the scale of the step control's tolerance.
+    depth_scale: f64,
 }
 
 /// The work of a force along the steps, from its power at the end of each step: each step's
@@ -197,212 +225,297 @@ fn integrate<S: Stepper>(
     model: &Model,
     init: &Initial,
     stepper: S,
-    max_steps: u64,
-    depth_scale: f64,
+    limits: &Limits,
     trace: Option<&mut Trace>,
-) -> Record {
+    cancel: &Cancel,
+) -> Result<Record> {
     match &model.scene.shape {
-        Shape::Disc { r } => integrate_on(
-            model,
-            init,
-            stepper,
-            DiscPlate { r: *r },
-            max_steps,
-            depth_scale,
-            trace,
-        ),
-        Shape::Sphere { r } => integrate_on(
-            model,
-            init,
-            stepper,
-            SpherePlate { r: *r },
-            max_steps,
-            depth_scale,
-            trace,
-        ),
+        Shape::Disc { r } => {
+            FixedLoop::new(model, stepper, DiscPlate { r: *r }, limits).run(init, trace, cancel)
+        }
+        Shape::Sphere { r } => {
+            FixedLoop::new(model, stepper, SpherePlate { r: *r }, limits).run(init, trace, cancel)
+        }
         shape => {
             let method = model.scene.overlap;
-            integrate_on(
-                model,
-                init,
-                stepper,
-                ShapePlate { shape, method },
-                max_steps,
-                depth_scale,
-                trace,
-            )
+            let geometry = ShapePlate { shape, method };
+            FixedLoop::new(model, stepper, geometry, limits).run(init, trace, cancel)
         }
     }
 }
 
-fn integrate_on<S: Stepper, G: PlateGeometry>(
-    model: &Model,
-    init: &Initial,
-    mut stepper: S,
-    geometry: G,
-    mut max_steps: u64,
-    depth_scale: f64,
-    mut trace: Option<&mut Trace>,
-) -> Record {
-    let contact_budget = max_steps;
-    let dt = model.dt;
-    let inv_mass = [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia];
-    let mut contact = Contact::new(model, geometry);
-    let mut rec = Record {
-        contacts: 1,
-        ..Record::default()
-    };
-    let v_in = stepper.velocity();
-    rec.energy_in = kinetic_energy(model, &v_in);
+/// The state of one fixed-step impact between steps.
+struct FixedLoop<'a, S, G> {
+    model: &'a Model,
+    stepper: S,
+    contact: Contact<'a, G>,
+    limits: Limits,
+    inv_mass: Dof,
+    /// Polygons without friction: steps located on events and refined where the force
+    /// changes within a step (see `events`), only without friction: with it the stick/slip
+    /// switches bound the fixed-step integrators to first order anyway (MODEL.md), and the
+    /// restarts and refined steps measured no better e_n while they disturbed the energy
+    /// balance of frictional spinning polygons (its residual rose from ~1e-7 to ~2e-6 at the
+    /// default step), so those keep the plain steps.
+    events: bool,
+    control: Option<events::EventControl>,
+    /// Works of the normal and tangential forces: quadratures of their powers along the steps.
+    w_n: Work,
+    w_t: Work,
+    was_pushing: bool,
+    /// Time taken beyond `steps * dt` (shortened and refined steps, flights jumped over).
+    t_extra: f64,
+    steps: u64,
+    in_contact: bool,
+    contact_start: f64,
+    prev_depth: f64,
+    rec: Record,
+}
 
-    // Works of the normal and tangential forces: quadratures of their powers along the steps.
-    let (mut w_n, mut w_t) = (Work::starting_at(0.0), Work::starting_at(0.0));
-    let mut was_pushing = false;
-    let mut t_extra = 0.0;
-    let (mut max_area, mut max_depth) = (0.0f64, 0.0f64);
-    let mut steps = 0u64;
-    let (mut in_contact, mut contact_start, mut prev_depth) = (true, 0.0, 0.0);
-    // Polygons: steps located on events and refined where the force changes within a step
-    // (see `events`), only without friction: with it the stick/slip switches bound the fixed-step integrators
-    // to first order anyway (docs/model.md, section 7.6), and the restarts and refined steps measured no better
-    // e_n while they disturbed the energy balance of frictional spinning polygons (its
-    // residual rose from ~1e-7 to ~2e-6 at the default step), so those keep the plain steps.
-    let events = G::EVENTS && model.scene.mu == 0.0;
-    let mut control = None;
-    if events {
-        // First touch is an event: start on the branch being entered (face first, the force
-        // grows linearly from touch, and its rate is not zero).
-        let (q, v) = (stepper.position(), stepper.velocity());
-        let b = events::branch_start(&contact, &q, &v, &[0.0; 3], &inv_mass, dt);
-        stepper.restart(&b.a, &b.jerk, dt);
-        let tol = ERROR_TOLERANCE * depth_scale;
-        control = Some(events::EventControl {
+impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
+    fn new(model: &'a Model, stepper: S, geometry: G, limits: &Limits) -> Self {
+        let events = G::EVENTS && model.scene.mu == 0.0;
+        FixedLoop {
+            model,
+            stepper,
+            contact: Contact::new(model, geometry),
+            limits: *limits,
+            inv_mass: [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia],
+            events,
+            control: None,
+            w_n: Work::starting_at(0.0),
+            w_t: Work::starting_at(0.0),
+            was_pushing: false,
+            t_extra: 0.0,
+            steps: 0,
+            in_contact: true,
+            contact_start: 0.0,
+            prev_depth: 0.0,
+            rec: Record {
+                contacts: 1,
+                step_budget: limits.max_steps,
+                ..Record::default()
+            },
+        }
+    }
+
+    fn run(
+        mut self,
+        init: &Initial,
+        mut trace: Option<&mut Trace>,
+        cancel: &Cancel,
+    ) -> Result<Record> {
+        let v_in = self.stepper.velocity();
+        self.rec.energy_in = kinetic_energy(self.model, &v_in);
+        if self.events {
+            self.start_events();
+        }
+        if let Some(tr) = trace.as_deref_mut() {
+            let q = self.stepper.position();
+            tr.push(0.0, &q, &v_in, &Forces::default(), 0.0, 0.0);
+        }
+        loop {
+            cancel.poll(self.steps)?;
+            if let Some(stop) = self.budget_spent() {
+                self.rec.stop = stop;
+                break;
+            }
+            let (q, v) = self.step(trace.as_deref_mut());
+            // Done once no part of the particle can reach the plate: its circumscribed circle
+            // is clear and moving away, or every point of it moves away (v_y > r |omega|: in
+            // free flight the gap then only grows; without this a face-first polygon at a
+            // glancing angle would time out while drifting up to clear r).
+            let r = self.model.r;
+            if !self.in_contact && v[1] > 0.0 && (q[1] >= r || v[1] > r * v[2].abs()) {
+                break;
+            }
+            if !self.in_contact && self.fly(trace.as_deref_mut()) {
+                break;
+            }
+        }
+        Ok(self.finish(init))
+    }
+
+    /// First touch is an event: start on the branch being entered (face first, the force
+    /// grows linearly from touch, and its rate is not zero).
+    fn start_events(&mut self) {
+        let dt = self.model.dt;
+        let (q, v) = (self.stepper.position(), self.stepper.velocity());
+        let b = events::branch_start(&self.contact, &q, &v, &[0.0; 3], &self.inv_mass, dt);
+        self.stepper.restart(&b.a, &b.jerk, dt);
+        self.control = Some(events::EventControl {
             corners: b.corners,
             h: dt,
             dt,
-            tolerance: tol,
+            tolerance: tolerance(self.limits.depth_scale, self.model.r),
         });
         let (p_el, p_d, p_t) = b.powers;
-        (w_n, w_t) = (Work::starting_at(p_el + p_d), Work::starting_at(p_t));
+        (self.w_n, self.w_t) = (Work::starting_at(p_el + p_d), Work::starting_at(p_t));
     }
-    if let Some(tr) = trace.as_deref_mut() {
-        tr.push(
-            0.0,
-            &stepper.position(),
-            &v_in,
-            &Forces::default(),
-            0.0,
-            0.0,
-        );
-    }
-    loop {
-        if steps >= max_steps {
-            rec.timed_out = true;
-            break;
+
+    /// The budget this impact has used up, if any: its steps, or its contact time.
+    fn budget_spent(&self) -> Option<StopReason> {
+        if self.steps >= self.limits.max_steps {
+            return Some(StopReason::StepBudget);
         }
-        let (f, h, restarted) = match control.as_mut() {
-            None => (stepper.step(&mut contact, dt, &inv_mass), dt, None),
+        let ongoing = if self.in_contact {
+            self.time() - self.contact_start
+        } else {
+            0.0
+        };
+        (self.rec.contact_time + ongoing > self.limits.contact_time)
+            .then_some(StopReason::ContactTimeBudget)
+    }
+
+    fn time(&self) -> f64 {
+        self.steps as f64 * self.model.dt + self.t_extra
+    }
+
+    /// One step, with its works, extremes and contact bookkeeping; the new position and
+    /// velocity.
+    fn step(&mut self, trace: Option<&mut Trace>) -> (Dof, Dof) {
+        let dt = self.model.dt;
+        let (f, h, restarted) = match self.control.as_mut() {
+            None => (
+                self.stepper.step(&mut self.contact, dt, &self.inv_mass),
+                dt,
+                None,
+            ),
             Some(c) => {
-                let taken = c.step(&mut stepper, &mut contact, &inv_mass);
+                let taken = c.step(&mut self.stepper, &mut self.contact, &self.inv_mass);
                 (taken.forces, taken.h, taken.restart)
             }
         };
-        steps += 1;
-        let (q, v) = (stepper.position(), stepper.velocity());
-        let (p_el, p_d, p_t) = f.powers(q[1], &v);
-        if events && S::HIGH_ORDER {
-            // The normal power kinks where the force is clipped to zero or released: a parabola
-            // through both sides would be worse than the trapezoid, so a new stretch starts
-            // there.
-            let pushing = f.f_el + f.f_d > 0.0;
-            if pushing == was_pushing {
-                w_n.push(h, p_el + p_d);
-                w_t.push(h, p_t);
-            } else {
-                w_n.push_trapezoid(h, p_el + p_d);
-                w_t.push_trapezoid(h, p_t);
-                (w_n, w_t) = (w_n.restart(p_el + p_d), w_t.restart(p_t));
-            }
-            was_pushing = pushing;
-        } else {
-            w_n.push_trapezoid(h, p_el + p_d);
-            w_t.push_trapezoid(h, p_t);
-        }
-        if events {
-            t_extra += h - dt;
+        self.steps += 1;
+        let (q, v) = (self.stepper.position(), self.stepper.velocity());
+        self.add_work(&f, h, &q, &v);
+        if self.events {
+            self.t_extra += h - dt;
             if let Some(b) = restarted {
                 // A new smooth stretch of the powers starts (they may jump at the event).
                 let (p_el, p_d, p_t) = b.powers;
-                (w_n, w_t) = (w_n.restart(p_el + p_d), w_t.restart(p_t));
+                (self.w_n, self.w_t) = (self.w_n.restart(p_el + p_d), self.w_t.restart(p_t));
             }
         }
-        let t = steps as f64 * dt + t_extra;
+        let t = self.time();
         // Plain comparisons rather than f64::max: the same result for these non-NaN values,
         // without max's NaN handling in the loop.
         if let Some(o) = f.overlap {
-            if o.area > max_area {
-                max_area = o.area;
+            if o.area > self.rec.max_area {
+                self.rec.max_area = o.area;
             }
         }
-        let depth = contact.geometry.depth(q[1], q[2]);
-        if depth > max_depth {
-            max_depth = depth;
+        let depth = self.contact.geometry.depth(q[1], q[2]);
+        if depth > self.rec.max_depth {
+            self.rec.max_depth = depth;
         }
-        // Contact starts and ends between steps: crossings interpolated linearly.
-        if in_contact && depth <= 0.0 {
-            rec.contact_time += t - h + crossing_fraction(prev_depth, depth) * h - contact_start;
-            in_contact = false;
-            // The timeout budgets contact, not the free flight of a spinning polygon between
-            // contacts: in uniform motion its circumscribed circle clears within
-            // (r - y) / v_y when rising, and when sinking its centre (which stays above the
-            // plate) meets it within y / |v_y|. Capped, so that a near-zero v_y still ends,
-            // as a timeout.
-            let gap = if v[1] > 0.0 { model.r - q[1] } else { q[1] };
-            let flight = (gap.max(0.0) / (v[1].abs() * dt)).ceil();
-            let cap = 20.0 * contact_budget as f64;
-            max_steps = max_steps.saturating_add(flight.min(cap) as u64 + 1);
-        } else if !in_contact && depth > 0.0 {
-            contact_start = t - h + crossing_fraction(prev_depth, depth) * h;
-            rec.contacts += 1;
-            in_contact = true;
+        self.cross(t, h, depth);
+        if let Some(tr) = trace {
+            tr.push(t, &q, &v, &f, depth, self.contact.spring.xi);
         }
-        if let Some(tr) = trace.as_deref_mut() {
-            tr.push(t, &q, &v, &f, depth, contact.spring.xi);
-        }
-        prev_depth = depth;
-        // Done once no part of the particle can reach the plate: its circumscribed circle is
-        // clear and moving away, or every point of it moves away (v_y > r |omega|: in free
-        // flight the gap then only grows; without this a face-first polygon at a glancing
-        // angle would time out while drifting up to clear r).
-        if !in_contact && v[1] > 0.0 && (q[1] >= model.r || v[1] > model.r * v[2].abs()) {
-            break;
+        self.prev_depth = depth;
+        (q, v)
+    }
+
+    /// Adds the step's share of the works.
+    #[inline(always)]
+    fn add_work(&mut self, f: &Forces, h: f64, q: &Dof, v: &Dof) {
+        let (p_el, p_d, p_t) = f.powers(q[1], v);
+        if self.events && S::HIGH_ORDER {
+            // The normal power kinks where the force is clipped to zero or released: a
+            // parabola through both sides would be worse than the trapezoid, so a new stretch
+            // starts there.
+            let pushing = f.f_el + f.f_d > 0.0;
+            if pushing == self.was_pushing {
+                self.w_n.push(h, p_el + p_d);
+                self.w_t.push(h, p_t);
+            } else {
+                self.w_n.push_trapezoid(h, p_el + p_d);
+                self.w_t.push_trapezoid(h, p_t);
+                (self.w_n, self.w_t) = (self.w_n.restart(p_el + p_d), self.w_t.restart(p_t));
+            }
+            self.was_pushing = pushing;
+        } else {
+            self.w_n.push_trapezoid(h, p_el + p_d);
+            self.w_t.push_trapezoid(h, p_t);
         }
     }
-    rec.steps = steps;
-    rec.max_area = max_area;
-    rec.max_depth = max_depth;
-    let v = stepper.velocity();
-    if in_contact {
-        rec.contact_time += rec.steps as f64 * dt + t_extra - contact_start;
+
+    /// Contact starts and ends between steps: crossings interpolated linearly.
+    #[inline(always)]
+    fn cross(&mut self, t: f64, h: f64, depth: f64) {
+        if self.in_contact && depth <= 0.0 {
+            let end = t - h + crossing_fraction(self.prev_depth, depth) * h;
+            self.rec.contact_time += end - self.contact_start;
+            self.in_contact = false;
+        } else if !self.in_contact && depth > 0.0 {
+            self.contact_start = t - h + crossing_fraction(self.prev_depth, depth) * h;
+            self.rec.contacts += 1;
+            self.in_contact = true;
+        }
     }
-    rec.slip_events = contact.spring.slip_events;
-    // The elastic force is integrated like the others, not taken as minus the change of its
-    // potential: in the clipped tail the force is switched off while the potential is not
-    // yet zero, and that stored energy is lost to the clip (a real part of the normal work).
-    rec.work_normal = w_n.total;
-    rec.work_friction = w_t.total;
-    rec.energy_out = kinetic_energy(model, &v);
-    rec.energy_residual =
-        (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in;
-    rec.vx_out = v[0];
-    rec.vy_out = v[1];
-    rec.omega_out = v[2];
-    rec.e_n = -v[1] / init.vy;
-    rec.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
-    rec.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
-    let v_cp = init.vx + model.r * init.omega;
-    rec.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
-    rec.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
-    rec.separated = !rec.timed_out;
-    rec
+
+    /// In free flight: jumps over it (see [`flight`]), each advance counted as a step; true
+    /// when no part of the particle can reach the plate again.
+    fn fly(&mut self, trace: Option<&mut Trace>) -> bool {
+        let (q, v) = (self.stepper.position(), self.stepper.velocity());
+        let dt = self.model.dt;
+        let geometry = &self.contact.geometry;
+        let gap = |t: f64| -geometry.depth(q[1] + v[1] * t, q[2] + v[2] * t);
+        let left = self.limits.max_steps.saturating_sub(self.steps);
+        let (jump, advances) = flight::jump(gap, q[1], &v, self.model.r, dt, left);
+        let (t_jump, done) = match jump {
+            flight::Jump::Stay => return false,
+            flight::Jump::To(t) => (t, false),
+            flight::Jump::Clear(t) => (t, true),
+        };
+        let depth = -gap(t_jump);
+        self.steps += advances;
+        let q_new: Dof = std::array::from_fn(|i| q[i] + v[i] * t_jump);
+        self.stepper = S::start(q_new, v, dt);
+        self.t_extra += t_jump;
+        if let Some(c) = self.control.as_mut() {
+            (c.h, c.corners) = (dt, None);
+        }
+        (self.w_n, self.w_t) = (self.w_n.restart(0.0), self.w_t.restart(0.0));
+        self.was_pushing = false;
+        self.prev_depth = depth;
+        if let Some(tr) = trace {
+            let (t, xi) = (self.time(), self.contact.spring.xi);
+            tr.push(t, &q_new, &v, &Forces::default(), depth, xi);
+        }
+        done
+    }
+
+    fn finish(self, init: &Initial) -> Record {
+        let model = self.model;
+        let mut rec = self.rec;
+        rec.steps = self.steps;
+        if self.in_contact {
+            rec.contact_time += self.time() - self.contact_start;
+        }
+        let v = self.stepper.velocity();
+        rec.slip_events = self.contact.spring.slip_events;
+        // The elastic force is integrated like the others, not taken as minus the change of
+        // its potential: in the clipped tail the force is switched off while the potential is
+        // not yet zero, and that stored energy is lost to the clip (a real part of the normal
+        // work).
+        rec.work_normal = self.w_n.total;
+        rec.work_friction = self.w_t.total;
+        rec.energy_out = kinetic_energy(model, &v);
+        rec.energy_residual =
+            (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in;
+        rec.vx_out = v[0];
+        rec.vy_out = v[1];
+        rec.omega_out = v[2];
+        rec.e_n = -v[1] / init.vy;
+        rec.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
+        rec.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
+        let v_cp = init.vx + model.r * init.omega;
+        rec.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
+        rec.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
+        rec.timed_out = rec.stop != StopReason::Separated;
+        rec.separated = !rec.timed_out;
+        rec
+    }
 }

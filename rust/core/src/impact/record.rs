@@ -7,8 +7,51 @@ use crate::error::{Error, Result};
 use crate::law::{Dof, Forces};
 use crate::model::{Initial, Model, NormalLaw};
 
-/// A contact that has not ended after this many estimated contact times is stopped.
+/// A contact that has not ended after this many estimated contact times is stopped
+/// ([`StopReason::ContactTimeBudget`]).
 pub const TIMEOUT_CONTACT_TIMES: f64 = 100.0;
+
+/// Why an impact ended. Every reason but [`StopReason::Separated`] sets `timed_out`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum StopReason {
+    /// The particle left the plate and no part of it can reach the plate again.
+    #[default]
+    Separated,
+    /// The impact used its step budget (`Scene::max_steps`, or the default budget
+    /// [`crate::impact::default_step_budget`]) before it separated.
+    StepBudget,
+    /// The contact lasted [`TIMEOUT_CONTACT_TIMES`] estimated contact times (fixed-step
+    /// integrators: counted in contact time; the reference integrator: in elapsed time).
+    ContactTimeBudget,
+    /// The reference integrator met a non-finite state even at its smallest step and stopped
+    /// at the last finite one.
+    NonFinite,
+}
+
+impl StopReason {
+    /// Every reason, in code order (the code of a reason is its index here).
+    pub const ALL: [StopReason; 4] = [
+        StopReason::Separated,
+        StopReason::StepBudget,
+        StopReason::ContactTimeBudget,
+        StopReason::NonFinite,
+    ];
+
+    /// Public name, as in the Python API.
+    pub fn name(self) -> &'static str {
+        match self {
+            StopReason::Separated => "separated",
+            StopReason::StepBudget => "step_budget",
+            StopReason::ContactTimeBudget => "contact_time_budget",
+            StopReason::NonFinite => "non_finite",
+        }
+    }
+
+    /// Its index in [`StopReason::ALL`].
+    pub fn code(&self) -> u8 {
+        *self as u8
+    }
+}
 
 /// What one impact returns (public names; definitions in docs/model.md, section 9).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -31,8 +74,12 @@ pub struct Record {
     pub vy_out: f64,
     /// Time with overlap, summed over contacts, crossings interpolated linearly (s).
     pub contact_time: f64,
-    /// Integration steps from first touch to the end.
+    /// Integration steps from first touch to the end (the reference integrator: accepted
+    /// steps; its budget counts rejected ones too).
     pub steps: u64,
+    /// The step budget this impact ran under (`Scene::max_steps` or the default budget,
+    /// [`crate::impact::step_budget`]): `steps <= step_budget` always.
+    pub step_budget: u64,
     /// Number of contacts (re-contacts of a spinning polygon belong to the same impact).
     pub contacts: u32,
     /// Largest depth of the lowest point below the plate (m).
@@ -53,8 +100,10 @@ pub struct Record {
     pub energy_residual: f64,
     /// The particle left the plate and cleared it.
     pub separated: bool,
-    /// Stopped after TIMEOUT_CONTACT_TIMES estimated contact times.
+    /// Stopped before separating, by a budget: `stop` says which.
     pub timed_out: bool,
+    /// Why the impact ended (`timed_out` is `stop != Separated`).
+    pub stop: StopReason,
 }
 
 /// One value of a record column, as a binding stores it.
@@ -68,18 +117,20 @@ pub enum Cell {
     Int(u64),
     /// A flag.
     Bool(bool),
+    /// A name (why the impact ended).
+    Name(&'static str),
 }
 
 /// Names the record's columns and reads them, in one list: the schema every binding exports.
 macro_rules! record_columns {
-    ($($name:ident: $kind:ident $(as $cast:ty)?),* $(,)?) => {
+    ($($name:ident: $kind:ident $(as $cast:ty)? $(=> $map:path)?),* $(,)?) => {
         /// The record's column names, in output order (the public names of the model).
         pub const RECORD_COLUMNS: [&str; [$(stringify!($name)),*].len()] = [$(stringify!($name)),*];
 
         impl Record {
             /// The record's values in the order of [`RECORD_COLUMNS`].
             pub fn cells(&self) -> [Cell; RECORD_COLUMNS.len()] {
-                [$(Cell::$kind(self.$name $(as $cast)?)),*]
+                [$(Cell::$kind($($map)?(self.$name $(as $cast)?))),*]
             }
         }
     };
@@ -90,7 +141,7 @@ record_columns! {
     vx_out: F64, vy_out: F64, contact_time: F64, steps: Int, contacts: Int as u64,
     max_depth: F64, max_area: F64, slip_events: Int, energy_in: F64, energy_out: F64,
     work_normal: F64, work_friction: F64, energy_residual: F64, separated: Bool,
-    timed_out: Bool,
+    timed_out: Bool, step_budget: Int, stop: Name => StopReason::name,
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).

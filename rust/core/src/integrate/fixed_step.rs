@@ -27,6 +27,9 @@ pub trait Stepper: Clone {
     /// below the trapezoid's error). Verlet's velocity update is itself a trapezoid of the
     /// forces, so the trapezoid closes its energy balance.
     const HIGH_ORDER: bool;
+    /// A fresh integrator at position `q` and velocity `v` with step `dt`, no force acting
+    /// (at first touch, and after a free flight jumped over).
+    fn start(q: Dof, v: Dof, dt: f64) -> Self;
     /// Advances one step of `dt`, returning the forces used.
     fn step<G: PlateGeometry>(
         &mut self,
@@ -185,6 +188,10 @@ impl Gear5 {
 impl Stepper for Gear5 {
     const HIGH_ORDER: bool = true;
 
+    fn start(q: Dof, v: Dof, dt: f64) -> Self {
+        Self::new(q, v, dt)
+    }
+
     #[inline(always)]
     fn step<G: PlateGeometry>(
         &mut self,
@@ -336,6 +343,10 @@ impl Verlet {
 
 impl Stepper for Verlet {
     const HIGH_ORDER: bool = false;
+
+    fn start(q: Dof, v: Dof, dt: f64) -> Self {
+        Self::new(q, v, dt)
+    }
 
     #[inline(always)]
     fn step<G: PlateGeometry>(

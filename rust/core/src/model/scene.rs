@@ -197,6 +197,10 @@ pub struct Scene {
     pub overlap: OverlapMethod,
     /// The tangential law (default: what the normal law implies).
     pub tangential: TangentialModel,
+    /// Most integration steps one impact may take (>= 1); past it the impact ends with
+    /// `timed_out` and `stop = StepBudget`. `None`: the default budget, a fixed multiple of
+    /// the contact's own number of steps ([`crate::impact::default_step_budget`]).
+    pub max_steps: Option<u64>,
 }
 
 impl Default for Scene {
@@ -215,6 +219,7 @@ impl Default for Scene {
             dt_factor: 0.01,
             overlap: OverlapMethod::Auto,
             tangential: TangentialModel::Auto,
+            max_steps: None,
         }
     }
 }
@@ -440,6 +445,14 @@ impl Model {
         if let Some(kt) = scene.kt {
             positive("kt", kt)?;
         }
+        if let Some(n) = scene.max_steps {
+            ensure_param!(
+                n >= 1,
+                "max_steps",
+                n,
+                ">= 1 (or unset for the default budget)"
+            );
+        }
         let r = scene.shape.circumradius();
         positive("r", r)?;
         scene.overlap.check_shape(&scene.shape)?;
@@ -556,7 +569,7 @@ impl Model {
 /// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
 /// Adding a parameter means a field of [`Scene`], a name here and its line in
 /// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
-pub const CASE_COLUMNS: [&str; 25] = [
+pub const CASE_COLUMNS: [&str; 26] = [
     "theta_deg",
     "omega_in",
     "v",
@@ -582,6 +595,7 @@ pub const CASE_COLUMNS: [&str; 25] = [
     "cor",
     "tangential",
     "body",
+    "max_steps",
 ];
 
 /// Public names of every choice, in code order: a choice column holds the index of its name.
@@ -637,6 +651,21 @@ fn optional(value: f64) -> Option<f64> {
     (!value.is_nan()).then_some(value)
 }
 
+/// The `max_steps` column: NaN for the default budget, else a whole number >= 1 (below
+/// 2^63, exactly representable up to 2^53).
+fn step_budget(value: f64) -> Result<Option<u64>> {
+    if value.is_nan() {
+        return Ok(None);
+    }
+    ensure_param!(
+        value.fract() == 0.0 && (1.0..9.2e18).contains(&value),
+        "max_steps",
+        value,
+        "a whole number >= 1 (or unset for the default budget)"
+    );
+    Ok(Some(value as u64))
+}
+
 /// The particle's shape from the columns `n` (0: exact disc, >= 3: regular n-gon) and `r`,
 /// or from unit-circumradius `vertices` scaled by `r` (then `n` is ignored).
 pub fn shape_from_columns(n: f64, r: f64, vertices: Option<&[[f64; 2]]>) -> Result<Shape> {
@@ -665,7 +694,7 @@ pub fn scene_from_columns(
     row: &[f64; CASE_COLUMNS.len()],
     vertices: Option<&[[f64; 2]]>,
 ) -> Result<(Scene, Initial)> {
-    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body] =
+    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body, max_steps] =
         *row;
     check_theta(theta)?;
     positive("v", v)?;
@@ -719,6 +748,7 @@ pub fn scene_from_columns(
             TangentialModel::Linear,
             TangentialModel::Mindlin,
         ][choice("tangential", tangential)?],
+        max_steps: step_budget(max_steps)?,
     };
     Ok((scene, Initial::from_angle(v, theta, omega, phi0)))
 }

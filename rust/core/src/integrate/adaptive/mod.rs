@@ -27,9 +27,11 @@
 //! `dt_factor` means the largest (and the first) step, in units of t_ref; the accuracy is set
 //! by [`ReferenceOptions::tol`].
 
+use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::{Overlap, Shape};
-use crate::impact::record::{estimate_max_depth, Record, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::impact::budget::{budget_for, reference_contact_steps};
+use crate::impact::record::{estimate_max_depth, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
 use crate::law::Forces;
 use crate::law::StickState;
 use crate::model::{Initial, Integrator, Model, NormalLaw, Scene};
@@ -65,7 +67,7 @@ pub fn simulate_reference(
     let model = reference_model(scene)?;
     model.check_initial(init)?;
     let depth_est = estimate_max_depth(&model, init)?;
-    Ok(integrate(&model, init, depth_est, opts, None))
+    integrate(&model, init, depth_est, opts, None, Cancel::never())
 }
 
 /// As [`simulate_reference`], and records every accepted step.
@@ -78,7 +80,14 @@ pub fn simulate_reference_with_trace(
     model.check_initial(init)?;
     let depth_est = estimate_max_depth(&model, init)?;
     let mut trace = Trace::default();
-    let rec = integrate(&model, init, depth_est, opts, Some(&mut trace));
+    let rec = integrate(
+        &model,
+        init,
+        depth_est,
+        opts,
+        Some(&mut trace),
+        Cancel::never(),
+    )?;
     Ok((rec, trace))
 }
 
@@ -763,7 +772,8 @@ pub(crate) fn integrate(
     depth_est: f64,
     opts: &ReferenceOptions,
     mut trace: Option<&mut Trace>,
-) -> Record {
+    cancel: &Cancel,
+) -> Result<Record> {
     let shape = &model.scene.shape;
     let r = model.r;
     let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
@@ -795,11 +805,15 @@ pub(crate) fn integrate(
         force_tol: opts.tol * model.mass * speed / t_est,
     };
     let t_end = TIMEOUT_CONTACT_TIMES * t_est;
-    // A guard against hangs (the time-out proper is t_end): steps may be much shorter than
-    // h_max while a turning polygon brings corner after corner to the plate, but an explicit
-    // method crawls through a damper much stiffer than the contact (a spinning triangle at
-    // gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed out within seconds.
-    let max_steps = (10.0 * t_end / h_max).ceil().min(1e12) as u64 + 300_000;
+    // The step budget (attempts, rejected steps included): steps may be much shorter than
+    // h_max while a turning polygon brings corner after corner to the plate (counted in N_c),
+    // but an explicit method crawls through a damper much stiffer than the contact (a
+    // spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
+    // out.
+    let max_steps = budget_for(
+        model,
+        reference_contact_steps(model, init, depth_est, h_max, opts.tol),
+    );
     // Pieces shorter than this are negligible (for chattering and for slip counting).
     let tiny = 1e-9 * t_est;
     let n_corners = verts.len();
@@ -833,7 +847,7 @@ pub(crate) fn integrate(
     // Consecutive negligible pieces ended by a stick/slip switch, and by a clip switch.
     let (mut chatter_t, mut chatter_c) = (0u32, 0u32);
     let mut hold_tangential = false;
-    let mut timed_out = false;
+    let mut stop = StopReason::Separated;
 
     let (mut k1, e0) = ode.eval(&mode, &s);
     if let Some(tr) = trace.as_deref_mut() {
@@ -845,8 +859,13 @@ pub(crate) fn integrate(
         if mode.touch == Touch::Off && s[VY] > 0.0 && (s[Y] >= r || s[VY] > r * s[OM].abs()) {
             break;
         }
-        if t >= t_end || attempts >= max_steps {
-            timed_out = true;
+        cancel.poll(attempts)?;
+        if attempts >= max_steps {
+            stop = StopReason::StepBudget;
+            break;
+        }
+        if t >= t_end {
+            stop = StopReason::ContactTimeBudget;
             break;
         }
         h = h.min(h_max);
@@ -866,7 +885,7 @@ pub(crate) fn integrate(
                 h = (0.1 * h).max(h_min);
                 continue;
             }
-            timed_out = true;
+            stop = StopReason::NonFinite;
             break;
         }
         if err > 1.0 && h > h_min {
@@ -1011,7 +1030,7 @@ pub(crate) fn integrate(
     let work_friction = s[W_T];
     let (vx, vy, om) = (s[VX], s[VY], s[OM]);
     let v_cp = init.vx + r * init.omega;
-    Record {
+    Ok(Record {
         e_n: -vy / init.vy,
         e_t: (init.vx != 0.0).then(|| vx / init.vx),
         e_kin: vx.hypot(vy) / init.vx.hypot(init.vy),
@@ -1031,9 +1050,11 @@ pub(crate) fn integrate(
         work_normal,
         work_friction,
         energy_residual: (energy_out - energy_in - work_normal - work_friction) / energy_in,
-        separated: !timed_out,
-        timed_out,
-    }
+        separated: stop == StopReason::Separated,
+        timed_out: stop != StopReason::Separated,
+        step_budget: max_steps,
+        stop,
+    })
 }
 
 /// Updates the largest depth and area with their maxima inside the taken part of a step:
