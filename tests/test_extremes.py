@@ -42,6 +42,10 @@ def outcome(integrator: str, theta: float, omega: float, n: int = 0, **kw: float
         rec = rs.simulate(scene(integrator, n, **kw), theta_deg=theta, omega_in=omega)
     except ValueError as err:
         msg = str(err)
+        if "`dt_factor`" in msg and "at most 4e6 steps" in msg:
+            # A contact needing more steps than one impact may take (~1 s): refused up front,
+            # naming the cure.
+            return "steps"
         if "`dt_factor`" in msg:
             assert "stability bound" in msg or "largest step" in msg, msg
             return "dt_factor"
@@ -64,7 +68,7 @@ def test_each_axis_to_its_extremes(integrator: str, axis: str, value: float) -> 
     omega = value if axis == "omega" else 0.0
     n = int(value) if axis == "n" else 0
     kw = {axis: value} if axis in ("mu", "gamma", "E", "v") else {}
-    assert outcome(integrator, theta, omega, n, **kw) in ("ok", "dt_factor")
+    assert outcome(integrator, theta, omega, n, **kw) in ("ok", "dt_factor", "steps")
 
 
 def test_meaningless_scene_names_v_and_e() -> None:
@@ -90,13 +94,15 @@ def test_corners_of_the_parameter_box() -> None:
             counts[f"{integrator}:{result}"] = counts.get(f"{integrator}:{result}", 0) + 1
             counts["gear5:dt_factor:last"] = int(integrator == "gear5" and result == "dt_factor")
             if E == 1e3 and v == 1e3:
-                assert result in ("v", "dt_factor"), (theta, mu, gamma, omega, n, integrator)
+                assert result in ("v", "dt_factor", "steps"), (theta, mu, gamma, omega, n, integrator)
             elif E == 1e12 and v == 1e-6 and theta == 0.01:
                 # A depth of ~1e-13 m at r = 0.01 m: refused where the engine cannot resolve it.
-                assert result in ("ok", "v", "dt_factor"), (theta, mu, gamma, omega, n, integrator)
+                assert result in ("ok", "v", "dt_factor", "steps"), (theta, mu, gamma, omega, n, integrator)
             else:
-                assert result in ("ok", "dt_factor"), (theta, mu, gamma, omega, E, v, n, integrator)
-    assert counts["gear5:ok"] >= 64, counts
+                assert result in ("ok", "dt_factor", "steps"), (theta, mu, gamma, omega, E, v, n, integrator)
+    # At least half the corners run, or are refused only for needing more steps than an impact
+    # may take (the slow contacts of a stiff material at tiny speed).
+    assert counts["gear5:ok"] + counts.get("gear5:steps", 0) >= 64, counts
 
 
 def test_sweep_over_the_extremes_is_finite() -> None:
@@ -161,5 +167,5 @@ def test_absurd_spin_is_refused_naming_omega_in(omega_in: float) -> None:
 
 
 def test_a_step_too_small_for_any_contact_to_finish_is_refused_naming_dt_factor() -> None:
-    with pytest.raises(ValueError, match=r"require `dt_factor` large enough that a contact takes at most 1e8 steps"):
+    with pytest.raises(ValueError, match=r"require `dt_factor` large enough that a contact takes at most 4e6 steps"):
         rs.simulate(rs.Scene(dt_factor=1e-9), theta_deg=45.0)

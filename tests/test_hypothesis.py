@@ -217,7 +217,9 @@ def test_fuzz_sweep_axes(axis: str, value: object) -> None:
         assert any(name in str(err) for name in (axis, "`v`", "`dt_factor`")), str(err)
         return
     assert axis != "nonsense", "an unknown axis was accepted"
-    assert df.height >= 2 and np.isfinite(df["e_n"].to_numpy()).all()
+    values = len(np.atleast_1d(np.asarray(value, dtype=object)))
+    assert df.height == (values if axis == "theta_deg" else 2 * values)  # the axis replaced or multiplied
+    assert np.isfinite(df["e_n"].to_numpy()).all()
     assert df["separated"].all()
 
 

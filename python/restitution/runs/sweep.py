@@ -196,8 +196,13 @@ def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
     if name not in AXES:
         raise ValueError(f"`{name}` is not a sweep axis; allowed axes: {', '.join(AXES)}")
     if name in _engine.CHOICES:
-        vals = [values] if isinstance(values, str) else list(np.atleast_1d(np.asarray(values, dtype=object)))
-        a = np.array([_engine.code(name, v) for v in vals], dtype=np.float64)
+        try:
+            names = np.atleast_1d(np.asarray(values, dtype=object))
+        except (TypeError, ValueError):  # ragged nests of arrays
+            raise TypeError(f"`{name}` must be a name or a 1-D list of names (found {values!r:.80})") from None
+        if names.ndim != 1:
+            raise ValueError(f"require `{name}` a name or a 1-D list of names (found shape {names.shape})")
+        a = np.array([_engine.code(name, v) for v in names], dtype=np.float64)
     elif name == "n":
         ints = np.atleast_1d(np.asarray(values))
         if ints.ndim != 1 or not np.issubdtype(ints.dtype, np.integer):
