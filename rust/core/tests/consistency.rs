@@ -13,7 +13,8 @@
 //! --nocapture` the long, seeded random one.
 
 use restitution_core::{
-    max_dt_factor, simulate, Initial, Integrator, NormalLaw, Record, Scene, Shape,
+    max_dt_factor, simulate, Error, InertiaModel, Initial, Integrator, Model, NormalLaw,
+    OverlapMethod, Record, Scene, Shape, TangentialModel,
 };
 
 const V: f64 = 0.0357;
@@ -101,76 +102,590 @@ fn measure_linear_polygons() {
     }
 }
 
-#[test]
-#[ignore]
-fn probe_reference_cases() {
-    use restitution_core::{simulate_reference_with_trace, ReferenceOptions};
-    let deg = std::f64::consts::PI / 180.0;
-    let cases = [
-        ("clip tail", 0.10, 0.0, 0.0, 0.0, 10.0, -50.0, 0.0),
-        ("after sep", 0.33, 0.1, 0.5, 2.90174, 70.0, 50.0, 0.0),
-        ("after sep 0.05", 0.33, 0.1, 0.5, 0.05, 50.0, 50.0, 0.0),
-    ];
-    for (name, gamma, mu, gamma_t, phi0, theta, om, _) in cases {
-        let scene = Scene {
-            shape: Shape::regular_polygon(R, 120).unwrap(),
-            gamma,
-            mu,
-            gamma_t,
-            dt_factor: 0.2,
-            integrator: Integrator::Reference,
-            ..Scene::default()
-        };
-        let init = Initial::from_angle(V, theta, om * deg, phi0);
-        let (rec, tr) =
-            simulate_reference_with_trace(&scene, &init, &ReferenceOptions::default()).unwrap();
-        println!("{name}: e_n {:.12} steps {}", rec.e_n, rec.steps);
-        let n = tr.t.len();
-        let sep = (1..n).find(|&i| tr.depth[i] <= 0.0).unwrap_or(n);
-        for i in sep.saturating_sub(6)..n {
-            println!(
-                "  t {:.6e} y {:.6e} vy {:.12e} fn {:.4e} ft {:.3e} area {:.3e} depth {:.3e} st {} om {:.4e}",
-                tr.t[i], tr.y[i], tr.vy[i], tr.f_n[i], tr.f_t[i], tr.area[i], tr.depth[i], tr.stick[i], tr.omega[i]
-            );
-        }
+// ---------------------------------------------------------------------------------------------
+// The reference path: the plate never pulls, no force once the overlap has ended
+
+/// The 120-gon of the reproducers at the reference's largest step `dtf`.
+fn reference_scene(gamma: f64, mu: f64, gamma_t: f64, dtf: f64) -> Scene {
+    Scene {
+        shape: Shape::regular_polygon(R, 120).unwrap(),
+        gamma,
+        mu,
+        gamma_t,
+        dt_factor: dtf,
+        integrator: Integrator::Reference,
+        ..Scene::default()
     }
 }
 
+/// Without friction the only force is F_n >= 0 along +y: v_y can never decrease, at any
+/// step, in the clipped tail included (the case: 120-gon, theta 10, gamma 0.1,
+/// omega_in -50 deg/s, largest step 0.2 t_ref, where v_y fell by 1.4e-8 m/s after the clip).
 #[test]
-#[ignore]
-fn probe_force_after_separation() {
+fn reference_plate_never_pulls_in_the_clipped_tail() {
     use restitution_core::{simulate_reference_with_trace, ReferenceOptions};
-    let deg = std::f64::consts::PI / 180.0;
-    let mut bad = 0;
+    let mut worst: f64 = 0.0;
     for dtf in [0.2, 1.0] {
-        for k in 0..300 {
-            let phi0 = k as f64 * 0.01;
+        for k in 0..40 {
+            let phi0 = 0.075 * k as f64;
+            for (theta, om_deg) in [(10.0, -50.0f64), (30.0, 50.0), (70.0, -20.0)] {
+                let scene = reference_scene(0.10, 0.0, 0.0, dtf);
+                let init = Initial::from_angle(V, theta, om_deg.to_radians(), phi0);
+                let opts = ReferenceOptions::default();
+                let (_, tr) = simulate_reference_with_trace(&scene, &init, &opts).unwrap();
+                for w in tr.vy.windows(2) {
+                    worst = worst.max(w[0] - w[1]);
+                }
+            }
+        }
+    }
+    // Round-off of v_y (~0.03 m/s) only.
+    assert!(
+        worst <= 1e-15,
+        "v_y fell by {worst:e} m/s: the plate pulled"
+    );
+}
+
+/// Once no corner is below the plate and every point of the body moves away (v_y > r |omega|)
+/// nothing can touch it again: the velocities stay as they are (the case: 120-gon,
+/// gamma 0.33, mu 0.1, gamma_t 0.5, omega_in +50 deg/s, where one more step found a sliver
+/// and applied f_n = mu^-1 f_t ~ 1e-2 N/m).
+#[test]
+fn reference_applies_no_force_after_separation() {
+    use restitution_core::{simulate_reference_with_trace, ReferenceOptions};
+    let mut bad = Vec::new();
+    for dtf in [0.2, 1.0] {
+        for k in 0..100 {
+            let phi0 = 0.03 * k as f64;
             for theta in [50.0, 70.0] {
-                let scene = Scene {
-                    shape: Shape::regular_polygon(R, 120).unwrap(),
-                    gamma: 0.33,
-                    mu: 0.1,
-                    gamma_t: 0.5,
-                    dt_factor: dtf,
-                    integrator: Integrator::Reference,
-                    ..Scene::default()
-                };
-                let init = Initial::from_angle(V, theta, 50.0 * deg, phi0);
-                let (_, tr) =
-                    simulate_reference_with_trace(&scene, &init, &ReferenceOptions::default())
-                        .unwrap();
+                let scene = reference_scene(0.33, 0.1, 0.5, dtf);
+                let init = Initial::from_angle(V, theta, 50f64.to_radians(), phi0);
+                let opts = ReferenceOptions::default();
+                let (_, tr) = simulate_reference_with_trace(&scene, &init, &opts).unwrap();
                 let n = tr.t.len();
-                let sep = (1..n).find(|&i| tr.depth[i] <= 0.0 && tr.vy[i] > R * tr.omega[i].abs());
-                if let Some(s) = sep {
-                    if let Some(j) = (s..n).find(|&j| tr.f_n[j] != 0.0 || tr.vy[j] != tr.vy[s]) {
-                        bad += 1;
-                        if bad < 5 {
-                            println!("dtf {dtf} phi0 {phi0} theta {theta}: sep row {s}, force row {j} of {n}: area {:e} fn {:e} dvy {:e}", tr.area[j], tr.f_n[j], tr.vy[j]-tr.vy[s]);
-                        }
+                let gone = (1..n).find(|&i| tr.depth[i] <= 0.0 && tr.vy[i] > R * tr.omega[i].abs());
+                if let Some(g) = gone {
+                    let moved = (g + 1..n).any(|j| {
+                        tr.vx[j] != tr.vx[g] || tr.vy[j] != tr.vy[g] || tr.omega[j] != tr.omega[g]
+                    });
+                    if moved {
+                        bad.push((dtf, phi0, theta));
                     }
                 }
             }
         }
     }
-    println!("bad {bad}");
+    assert!(
+        bad.is_empty(),
+        "a force after separation in {} cases, e.g. {:?}",
+        bad.len(),
+        bad.first()
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The matrix
+
+/// The largest energy gain, energy_out / energy_in - 1, that an elastic impact (all damping
+/// off, any mu) may show: the integrator's documented bound (docs/consistency.md), measured
+/// over this matrix and the long random one.
+fn documented_gain_bound(scene: &Scene) -> f64 {
+    let polygon = !matches!(scene.shape, Shape::Disc { .. });
+    match (scene.integrator, scene.normal_law, polygon) {
+        (Integrator::Reference, _, _) => 1e-9,
+        // The linear force kinks at touch and separation (delta^1 against the area law's
+        // delta^1.5) and at every corner crossing; a fixed step straddling a kink errs to
+        // first order there (the disc's loop locates no events, frictional polygons neither).
+        (_, NormalLaw::Linear { .. }, _) => 2e-5,
+        // A frictional polygon keeps the plain steps (no located corner crossings).
+        (_, NormalLaw::Area, true) if scene.mu > 0.0 => 1e-4,
+        _ => 1e-6,
+    }
+}
+
+/// The largest |energy_residual| of a damped or frictional impact at the default step
+/// (MODEL.md: 1e-6). The linear law's dashpot force jumps at touch (c_n v_n at zero depth),
+/// which the fixed steps' work quadrature meets to first order: measured up to 1.23e-6 on the
+/// disc, above MODEL.md's 1e-6 (open, docs/consistency.md).
+fn documented_residual_bound(scene: &Scene) -> f64 {
+    match (scene.integrator, scene.normal_law) {
+        (Integrator::Reference, _) | (_, NormalLaw::Area) | (_, NormalLaw::Hertz { .. }) => 1e-6,
+        (_, NormalLaw::Linear { .. }) => 2e-6,
+    }
+}
+
+/// Every combination of the engine's lists of choices.
+fn choices() -> Vec<(
+    NormalLaw,
+    Integrator,
+    OverlapMethod,
+    InertiaModel,
+    TangentialModel,
+)> {
+    let mut out = Vec::new();
+    for law in NormalLaw::ALL {
+        for integrator in Integrator::ALL {
+            for overlap in OverlapMethod::ALL {
+                for inertia in InertiaModel::ALL {
+                    for tangential in TangentialModel::ALL {
+                        out.push((law, integrator, overlap, inertia, tangential));
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Every combination of the engine's lists with every representative shape, elastic (damping
+/// off) or damped.
+fn combinations(damped: bool) -> Vec<(String, Scene)> {
+    let mut out = Vec::new();
+    for (name, shape) in Shape::representatives(R, 7) {
+        for (law, integrator, overlap, inertia, tangential) in choices() {
+            let base = Scene {
+                shape: shape.clone(),
+                integrator,
+                overlap,
+                inertia,
+                tangential,
+                gamma: if damped { 0.33 } else { 0.0 },
+                gamma_t: if damped { 0.5 } else { 0.0 },
+                ..Scene::default()
+            };
+            let mass = base.rho * shape.area();
+            let zeta = if damped { 0.2 } else { 0.0 };
+            let scene = Scene {
+                normal_law: law.with_scale(base.e_modulus, zeta, mass),
+                ..base
+            };
+            let label = format!(
+                "{name} {} {} {} {} {tangential:?}",
+                law.name(),
+                integrator.name(),
+                overlap.name(),
+                inertia.name()
+            );
+            out.push((label, scene));
+        }
+    }
+    out
+}
+
+/// A scene the engine accepts (at the integrator's default step or its bound), or the
+/// reason it refuses it up front.
+fn accepted(scene: &Scene, mu: f64) -> Result<Scene, Error> {
+    let scene = Scene {
+        mu,
+        ..scene.clone()
+    };
+    let bound = max_dt_factor(&scene)?;
+    let scene = Scene {
+        dt_factor: scene.dt_factor.min(bound),
+        ..scene
+    };
+    Model::new(&scene)?;
+    Ok(scene)
+}
+
+/// The mirror image of a shape about the vertical through its centroid (vertices x -> -x,
+/// order reversed to stay counter-clockwise).
+fn mirrored(shape: &Shape) -> Shape {
+    match shape {
+        Shape::Disc { .. } | Shape::Sphere { .. } => shape.clone(),
+        Shape::Polygon(p) => {
+            let v: Vec<[f64; 2]> = p.vertices().iter().rev().map(|q| [-q.x, q.y]).collect();
+            Shape::convex_polygon(&v).unwrap()
+        }
+    }
+}
+
+fn mirror_init(init: &Initial) -> Initial {
+    Initial {
+        vx: -init.vx,
+        omega: -init.omega,
+        phi0: -init.phi0,
+        ..*init
+    }
+}
+
+/// The integrator's error in a velocity, relative to the impact speed, that the symmetry and
+/// scaling checks allow (round-off amplified through the contact: the fixed steps repeat the
+/// same operations, the reference converges to its tolerance).
+fn symmetry_tol(scene: &Scene) -> f64 {
+    match scene.integrator {
+        // Its error control ends near-simultaneous events at slightly different points in a
+        // mirrored, turned or rescaled scene (measured: up to 2.3e-7 on a turned pentagon
+        // through parry; 5e-8 for a rescaled disc at mu 1e3).
+        Integrator::Reference => 1e-6,
+        // The same operations on differently rounded corners: round-off, amplified by the
+        // stick/slip switches of frictional polygons (measured: up to 1.7e-8) and by the
+        // re-contacts of a tumbling triangle (9.5e-7 after a 120 deg turn, linear law), far
+        // below the discretisation error at the default step (~1e-4 in e_T).
+        _ => 2e-6,
+    }
+}
+
+/// Records equal to `tol` in the velocities (relative to v, omega to v / r), with `sign`
+/// applied to vx and omega (mirror: -1).
+fn same_record(a: &Record, b: &Record, sign: f64, v: f64, r: f64, tol: f64) -> Option<String> {
+    let d = [
+        (a.vy_out - b.vy_out) / v,
+        (a.vx_out - sign * b.vx_out) / v,
+        (a.omega_out - sign * b.omega_out) * r / v,
+    ];
+    let worst = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    (worst > tol || worst.is_nan()).then(|| format!("differ by {worst:e}"))
+}
+
+/// The dimensionless outputs of an impact.
+fn groups(rec: &Record, v: f64, r: f64) -> [f64; 4] {
+    [
+        rec.e_n,
+        rec.e_t.unwrap_or(0.0),
+        rec.e_kin,
+        rec.omega_out * r / v,
+    ]
+}
+
+/// The same scene with r x 10, rho x 10 and E x 1000 (so v x 10 keeps E / (rho v^2)), and
+/// the linear law's kn and cn scaled alike (kn / E and cn / sqrt(kn m) fixed).
+fn scaled(scene: &Scene) -> Scene {
+    let shape = match &scene.shape {
+        Shape::Disc { r } => Shape::Disc { r: 10.0 * r },
+        Shape::Sphere { r } => Shape::Sphere { r: 10.0 * r },
+        Shape::Polygon(p) => {
+            let v: Vec<[f64; 2]> = p
+                .vertices()
+                .iter()
+                .map(|q| [10.0 * q.x, 10.0 * q.y])
+                .collect();
+            Shape::convex_polygon(&v).unwrap()
+        }
+    };
+    let mass = 10.0 * scene.rho * shape.area();
+    let normal_law = match scene.normal_law {
+        NormalLaw::Linear { kn, cn } => {
+            let zeta = cn / (2.0 * (kn * scene.rho * scene.shape.area()).sqrt());
+            scene.normal_law.with_scale(1000.0 * kn, zeta, mass)
+        }
+        law => law,
+    };
+    Scene {
+        shape,
+        rho: 10.0 * scene.rho,
+        e_modulus: 1000.0 * scene.e_modulus,
+        normal_law,
+        kt: scene.kt.map(|k| 1000.0 * k),
+        ..scene.clone()
+    }
+}
+
+/// Worst measured value per label, for the report.
+#[derive(Default)]
+struct Tally {
+    worst_gain: std::collections::BTreeMap<String, f64>,
+    failures: Vec<String>,
+    runs: usize,
+    refused: std::collections::BTreeSet<String>,
+    timed_out: Vec<String>,
+}
+
+impl Tally {
+    fn fail(&mut self, what: String) {
+        if self.failures.len() < 40 {
+            self.failures.push(what);
+        }
+    }
+}
+
+/// One impact of an accepted scene, checked for every property that holds whatever the
+/// numbers: energy (elastic) or the sign of each work and the audit (damped), mirror symmetry,
+/// rotation by 360 / n, dimensional analysis, and on the disc the mu = 0 and mu -> inf limits.
+fn check_impact(
+    label: &str,
+    scene: &Scene,
+    theta: f64,
+    w_rv: f64,
+    phi0: f64,
+    symmetries: bool,
+    t: &mut Tally,
+) {
+    let (v, r) = (V, scene.shape.circumradius());
+    let init = Initial::from_angle(v, theta, w_rv * v / r, phi0);
+    let what = format!(
+        "{label} mu {} theta {theta} omega r/v {w_rv} phi0 {phi0}",
+        scene.mu
+    );
+    let rec = match simulate(scene, &init) {
+        Ok(rec) => rec,
+        Err(e) => return t.fail(format!("{what}: accepted scene failed to run: {e}")),
+    };
+    t.runs += 1;
+    if rec.timed_out {
+        // The reference budgets the whole impact, free flight included, where the fixed
+        // steps budget contact only: a polygon flung round by a stiff linear spring may fly
+        // longer than 100 contact times before its next corner comes down (open).
+        if scene.integrator == Integrator::Reference {
+            t.timed_out.push(what);
+            return;
+        }
+        return t.fail(format!("{what}: timed out"));
+    }
+    let gain = rec.energy_out / rec.energy_in - 1.0;
+    let elastic = scene.gamma == 0.0
+        && scene.gamma_t == 0.0
+        && !matches!(scene.normal_law, NormalLaw::Linear { cn, .. } if cn > 0.0);
+    let key = format!(
+        "{} {} {}",
+        scene.integrator.name(),
+        scene.normal_law.name(),
+        label_kind(label)
+    );
+    let worst = t.worst_gain.entry(key).or_insert(f64::NEG_INFINITY);
+    *worst = worst.max(gain);
+    if gain > documented_gain_bound(scene) {
+        t.fail(format!("{what}: energy gained {gain:e}"));
+    }
+    if !elastic {
+        // Dampers and friction never create energy; the audit closes (MODEL.md: 1e-6).
+        let tol = 1e-6 * rec.energy_in;
+        if rec.work_normal > tol && scene.gamma > 0.0 || rec.work_friction > tol {
+            t.fail(format!(
+                "{what}: work with the wrong sign {} {}",
+                rec.work_normal, rec.work_friction
+            ));
+        }
+        if rec.energy_residual.abs() > documented_residual_bound(scene) {
+            t.fail(format!("{what}: energy residual {:e}", rec.energy_residual));
+        }
+    }
+    check_disc_limits(&what, scene, &init, &rec, t);
+    if symmetries {
+        check_symmetries(&what, label, scene, &init, &rec, t);
+    }
+}
+
+/// Mirror image, rotation by 360 / n and dimensional analysis give the same record.
+fn check_symmetries(
+    what: &str,
+    label: &str,
+    scene: &Scene,
+    init: &Initial,
+    rec: &Record,
+    t: &mut Tally,
+) {
+    let (v, r) = (V, scene.shape.circumradius());
+    let (theta, phi0) = (
+        init.vy.atan2(init.vx).abs().to_degrees(),
+        init.phi0.to_degrees(),
+    );
+    let tol = symmetry_tol(scene);
+    let mirror = Scene {
+        shape: mirrored(&scene.shape),
+        ..scene.clone()
+    };
+    if let Ok(m) = simulate(&mirror, &mirror_init(init)) {
+        if let Some(d) = same_record(rec, &m, -1.0, v, r, tol) {
+            t.fail(format!("{what}: mirror image {d}"));
+        }
+    }
+    if let Some(n) = regular_n(label) {
+        let turned = Initial::from_angle(v, theta, init.omega, phi0 + 360.0 / n as f64);
+        if let Ok(m) = simulate(scene, &turned) {
+            if let Some(d) = same_record(rec, &m, 1.0, v, r, tol) {
+                t.fail(format!("{what}: rotated by 360/{n}: {d}"));
+            }
+        }
+    }
+    let big = scaled(scene);
+    let big_init = Initial::from_angle(10.0 * v, theta, init.omega, phi0);
+    match simulate(&big, &big_init) {
+        Ok(b) => {
+            let (g0, g1) = (groups(rec, v, r), groups(&b, 10.0 * v, 10.0 * r));
+            let d = g0
+                .iter()
+                .zip(g1)
+                .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+            if d > tol {
+                t.fail(format!(
+                    "{what}: scaled r, rho, E, v: groups differ by {d:e}"
+                ));
+            }
+        }
+        Err(e) => t.fail(format!("{what}: scaled scene refused: {e}")),
+    }
+}
+
+/// mu = 0 leaves v_x (and on the disc omega) untouched; mu -> inf on a disc rolls.
+fn check_disc_limits(what: &str, scene: &Scene, init: &Initial, rec: &Record, t: &mut Tally) {
+    if scene.mu == 0.0 {
+        if rec.vx_out != init.vx {
+            t.fail(format!(
+                "{what}: mu = 0 changed vx by {:e}",
+                rec.vx_out - init.vx
+            ));
+        }
+        if matches!(scene.shape, Shape::Disc { .. }) && rec.omega_out != init.omega {
+            t.fail(format!("{what}: mu = 0 changed the disc's spin"));
+        }
+    }
+    let disc = matches!(scene.shape, Shape::Disc { .. });
+    // The +-1.3 % oscillation is the area law's (MODEL.md); the linear law's contact is much
+    // shorter against the tangential period, and where the spring's phase at separation falls
+    // is not a limit (e_T 0.756 against 0.837 measured at theta 12, omega_in r / v = -0.5).
+    let area = scene.normal_law == NormalLaw::Area;
+    if disc && area && scene.mu >= 1e3 && scene.gamma_t >= 0.5 && init.vx != 0.0 {
+        let kappa = Model::new(scene)
+            .map(|m| m.inertia / (m.mass * m.r * m.r))
+            .unwrap_or(0.5);
+        let r = scene.shape.circumradius();
+        let rolling = 1.0 / (1.0 + kappa) - kappa * r * init.omega / ((1.0 + kappa) * init.vx);
+        // The documented micro-slip oscillation at gamma_t = 0.5 is +-1.3 % of e_T.
+        let e_t = rec.e_t.unwrap_or(f64::NAN);
+        if (e_t - rolling).abs() > 0.02 * rolling.abs().max(0.5) {
+            t.fail(format!("{what}: rolling limit e_T {e_t} vs {rolling}"));
+        }
+    }
+}
+
+fn label_kind(label: &str) -> &str {
+    label.split(' ').next().unwrap_or(label)
+}
+
+/// n of a regular polygon's label ("12-gon ...").
+fn regular_n(label: &str) -> Option<usize> {
+    label_kind(label).strip_suffix("-gon")?.parse().ok()
+}
+
+/// The mu that stands for "huge": 1e3 on the disc and for the reference; on polygons with a
+/// fixed step 10, already beyond full stick at every theta >= 5 deg (mu (1 + e_N) tan(theta)
+/// >= kappa / (1 + kappa) needs mu >= 1.5), where a larger mu changes nothing but the step
+/// bound (it falls like 1 / sqrt(mu): a stuck triangle then takes 5e7 steps).
+fn huge_mu(scene: &Scene) -> f64 {
+    let polygon = !matches!(scene.shape, Shape::Disc { .. });
+    if polygon && scene.integrator != Integrator::Reference {
+        10.0
+    } else {
+        1e3
+    }
+}
+
+/// Every combination checked at mu 0, 0.5 and huge, each impact at the next of `impacts`
+/// (theta, omega_in r / v, phi0) in turn; the refused ones listed.
+fn run_matrix(impacts: &[(f64, f64, f64)]) -> Tally {
+    let mut t = Tally::default();
+    let mut next = impacts.iter().cycle();
+    for damped in [false, true] {
+        for (label, base) in combinations(damped) {
+            for mu in [0.0, 0.5, huge_mu(&base)] {
+                let scene = match accepted(&base, mu) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        t.refused.insert(format!("{label}: {e}"));
+                        continue;
+                    }
+                };
+                let &(theta, w, phi) = next.next().unwrap();
+                check_impact(&label, &scene, theta, w, phi, true, &mut t);
+            }
+        }
+    }
+    t
+}
+
+fn report(t: &Tally) {
+    println!("{} impacts checked; refused combinations:", t.runs);
+    for r in &t.refused {
+        println!("  {r}");
+    }
+    println!("worst energy gain (elastic and damped) per integrator, law, shape:");
+    for (k, g) in &t.worst_gain {
+        println!("  {k:<40} {g:+.2e}");
+    }
+    println!(
+        "{} reference impacts timed out in flight:",
+        t.timed_out.len()
+    );
+    for w in &t.timed_out {
+        println!("  {w}");
+    }
+    for f in &t.failures {
+        println!("FAIL {f}");
+    }
+}
+
+#[test]
+fn quick_matrix() {
+    let mut impacts = Vec::new();
+    for theta in [12.0, 60.0, 85.0] {
+        for w in [0.5, 0.0, -0.5] {
+            impacts.push((theta, w, 7.0 + theta));
+        }
+    }
+    let t = run_matrix(&impacts);
+    report(&t);
+    // Only refusals of a combination, naming the choice at fault (docs/consistency.md lists
+    // them: parry on a disc or sphere, sphere inertia on a polygon, the Hertz law off a sphere
+    // and the other laws on one, Mindlin without Hertz, Hertz with the linear spring and no
+    // kt), never a refusal of a value.
+    for r in &t.refused {
+        assert!(
+            [
+                "`overlap`",
+                "`inertia`",
+                "`normal_law`",
+                "`tangential`",
+                "`kt`"
+            ]
+            .iter()
+            .any(|name| r.contains(name)),
+            "unexpected refusal {r}"
+        );
+    }
+    assert!(t.failures.is_empty(), "{} failures", t.failures.len());
+}
+
+/// The long matrix: `RESTITUTION_LONG` (default 10^4) random combinations, seeded, each a
+/// random shape, law, integrator, overlap method, inertia, damping, mu (0, uniform, 1e3),
+/// theta, omega_in and orientation, checked as the quick one.
+#[test]
+#[ignore]
+fn long_matrix() {
+    let count: usize = std::env::var("RESTITUTION_LONG")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(10_000);
+    let mut state = 0x5eed_u64;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let all = [combinations(false), combinations(true)];
+    let mut t = Tally::default();
+    let start = std::time::Instant::now();
+    for _ in 0..count {
+        let set = &all[(uniform() * 2.0) as usize];
+        let (label, base) = &set[(uniform() * set.len() as f64) as usize];
+        let mu = match (uniform() * 3.0) as usize {
+            0 => 0.0,
+            1 => uniform(),
+            _ => huge_mu(base),
+        };
+        let scene = match accepted(base, mu) {
+            Ok(s) => s,
+            Err(e) => {
+                t.refused.insert(format!("{label}: {e}"));
+                continue;
+            }
+        };
+        let theta = 3.0 + 87.0 * uniform();
+        let (w, phi) = (2.0 * uniform() - 1.0, 360.0 * uniform());
+        check_impact(label, &scene, theta, w, phi, true, &mut t);
+    }
+    report(&t);
+    println!("{:.0} s", start.elapsed().as_secs_f64());
+    assert!(t.failures.is_empty(), "{} failures", t.failures.len());
 }

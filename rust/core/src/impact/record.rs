@@ -204,7 +204,21 @@ fn normal_potential(model: &Model, depth: f64, phi: f64) -> f64 {
                 model.scene.e_modulus * o.first_moment / model.length
             })
         }
-        NormalLaw::Linear { kn, .. } => 0.5 * kn * depth * depth,
+        NormalLaw::Linear { kn, .. } => {
+            // One spring per corner below the plate (the disc: its lowest point).
+            let shape = &model.scene.shape;
+            let corners = shape.vertices();
+            if corners.is_empty() {
+                return 0.5 * kn * depth * depth;
+            }
+            let y = shape.touch_height(phi) - depth;
+            let (s, c) = phi.sin_cos();
+            corners
+                .iter()
+                .map(|p| (-(y + s * p.x + c * p.y)).max(0.0))
+                .map(|d| 0.5 * kn * d * d)
+                .sum()
+        }
         // The integral of 4/3 E* sqrt(R) delta^(3/2): 2/5 of it times delta.
         NormalLaw::Hertz { .. } => {
             let k = model.hertz.map_or(0.0, |h| h.k);

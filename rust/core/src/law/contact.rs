@@ -72,6 +72,36 @@ pub trait PlateGeometry: Clone {
     fn corner_height(&self, _k: usize, _y: f64, _phi: f64) -> f64 {
         f64::NAN
     }
+    /// x of corner `k` relative to the centre of mass, at orientation `phi`.
+    fn corner_x(&self, _k: usize, _phi: f64) -> f64 {
+        f64::NAN
+    }
+}
+
+/// The linear law on a polygon: one spring-dashpot per submerged corner (Cundall's vertex
+/// contacts), each acting vertically at its corner. `corners` yields, for every corner at or
+/// below the plate, its depth d_i and its x relative to the centre of mass; `v` is the body
+/// velocity. Returns (F_el, F_d, x_el, x_damp): the elastic force kn sum d_i, the gradient of
+/// the potential kn sum d_i^2 / 2 (torque included), at its centre x_el; the damping force
+/// cn sum d(d_i)/dt, whose power -cn sum (d(d_i)/dt)^2 is never positive, at x_damp.
+#[inline]
+pub fn vertex_springs(
+    kn: f64,
+    cn: f64,
+    corners: impl Iterator<Item = (f64, f64)>,
+    v: &Dof,
+) -> (f64, f64, f64, f64) {
+    let (mut d, mut dx, mut rate, mut rate_x) = (0.0, 0.0, 0.0, 0.0);
+    for (depth, x) in corners {
+        let r = -(v[1] + v[2] * x);
+        d += depth;
+        dx += depth * x;
+        rate += r;
+        rate_x += r * x;
+    }
+    let x_el = if d != 0.0 { dx / d } else { 0.0 };
+    let x_damp = if rate != 0.0 { rate_x / rate } else { 0.0 };
+    (kn * d, cn * rate, x_el, x_damp)
 }
 
 /// The exact disc of radius `r`: closed-form circular segment.
@@ -152,6 +182,12 @@ impl PlateGeometry for ShapePlate<'_> {
         }
     }
 
+    fn corner_x(&self, k: usize, phi: f64) -> f64 {
+        let (s, c) = phi.sin_cos();
+        let v = &self.shape.vertices()[k];
+        c * v.x - s * v.y
+    }
+
     #[inline(always)]
     fn overlap(&self, y: f64, phi: f64) -> Option<Overlap> {
         plate_overlap(self.shape, self.method, y, phi)
@@ -217,10 +253,17 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
                     o.x_mid,
                 )
             }
+            NormalLaw::Linear { kn, cn } if G::EVENTS => {
+                // A polygon: one spring-dashpot per submerged corner (see `vertex_springs`).
+                let g = &self.geometry;
+                let below = (0..g.corner_count()).filter_map(|k| {
+                    let h = g.corner_height(k, q[1], q[2]);
+                    (h <= 0.0).then(|| (-h, g.corner_x(k, q[2])))
+                });
+                vertex_springs(kn, cn, below, v)
+            }
             NormalLaw::Linear { kn, cn } => {
-                // One contact at the deepest point: spring and dashpot act there, so the spring
-                // is the gradient of kn delta^2 / 2 (torque included) and the dashpot's power is
-                // -cn (d delta / dt)^2. (On the disc the deepest point lies below the centre.)
+                // The disc: one spring-dashpot at its lowest point, below the centre.
                 let ddepth_dt = -(v[1] + v[2] * o.x_low);
                 (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
             }

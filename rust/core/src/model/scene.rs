@@ -43,6 +43,15 @@ pub enum TangentialModel {
     Mindlin,
 }
 
+impl TangentialModel {
+    /// Every tangential law, in code order (the consistency matrix runs them all).
+    pub const ALL: [TangentialModel; 3] = [
+        TangentialModel::Auto,
+        TangentialModel::Linear,
+        TangentialModel::Mindlin,
+    ];
+}
+
 impl NormalLaw {
     /// Every normal law, in code order (the consistency matrix runs them all); the parameters
     /// shown are placeholders, set per scene by [`NormalLaw::with_scale`].

@@ -24,10 +24,12 @@
 //! - Area law, damping: F_d = -c l (v_y + omega x_mid) at the chord midpoint, c = gamma
 //!   sqrt(m E) / L: a rank-one damping matrix with rate c l (1 / m + x_mid (x_mid + mu r) / I),
 //!   maximised over u as above (disc: c 2 r / m = gamma / (2 t_ref)).
-//! - Linear law: k_n times the depth of the lowest point (x_low off centre) at the overlap
-//!   centroid (|c_x| <= r): rate k_n (1 / m + a (1 + mu) r / I), a the largest |x_low| a
-//!   polygon's lowest vertex can have (0 for a disc, r sin(pi / n) for a regular n-gon); the
-//!   same lever with c_n for the damping.
+//! - Linear law, disc: k_n times the depth of the lowest point, below the centre: rate
+//!   k_n (1 / m + a (1 + mu) r / I) with a = 0; the same lever with c_n for the damping.
+//! - Linear law, polygon: one spring k_n per submerged corner at x_i: the trace bound
+//!   k_n sum_i (1 / m + x_i (|x_i| + mu r) / I) over the corners that can be below the plate
+//!   together (within r / 2 of the lowest, deeper impacts being refused), maximised over
+//!   orientations; the same lever with c_n for the damping.
 //! - Hertz law (a sphere): the stiffness dF/d(delta) = 2 E* sqrt(R delta) and the dashpot's
 //!   coefficient c delta^(1/4) at the deepest accepted contact, delta = r / 2 (deeper impacts
 //!   are refused), with no lever (the force acts below the centre). The dashpot's own depth
@@ -111,6 +113,33 @@ fn lowest_point_arm(shape: &Shape) -> f64 {
     arm
 }
 
+/// The linear law on a polygon (one spring per submerged corner, at x_i from the centre):
+/// the trace bound sum_i (1 + x_i (|x_i| + mu r) / (kappa r^2)) over the corners that can be
+/// below the plate together, maximised over orientations (sampled, 16 per corner spacing and
+/// at least 1024) with every corner within r / 2 of the lowest submerged (deeper impacts are
+/// refused). A face carries two springs, a fine n-gon many: the rate grows with them.
+fn vertex_springs_lever(shape: &Shape, mu: f64, kappa: f64) -> f64 {
+    let v = shape.vertices();
+    let r = shape.circumradius();
+    let samples = (16 * v.len()).max(1024);
+    let mut worst: f64 = 1.0;
+    for j in 0..samples {
+        let (s, c) = (2.0 * std::f64::consts::PI * j as f64 / samples as f64).sin_cos();
+        let h = |p: &nalgebra::Vector2<f64>| s * p.x + c * p.y;
+        let low = v.iter().map(h).fold(f64::INFINITY, f64::min);
+        let sum: f64 = v
+            .iter()
+            .filter(|p| h(p) <= low + 0.5 * r)
+            .map(|p| {
+                let x = (c * p.x - s * p.y).abs();
+                1.0 + x * (x + mu * r) / (kappa * r * r)
+            })
+            .sum();
+        worst = worst.max(sum);
+    }
+    worst
+}
+
 /// Rounds down to three significant digits, so that the printed bound is itself accepted.
 fn round_down_3(x: f64) -> f64 {
     if !(x.is_finite() && x > 0.0) {
@@ -160,6 +189,10 @@ impl Model {
                     (s.e_modulus * 2.0 * r * elastic / (self.length * m)).sqrt(),
                     self.area_damping * 2.0 * r * damping / m,
                 )
+            }
+            NormalLaw::Linear { kn, cn } if polygon => {
+                let lever = vertex_springs_lever(&s.shape, mu, kappa);
+                ((kn * lever / m).sqrt(), cn * lever / m)
             }
             NormalLaw::Linear { kn, cn } => {
                 let lever = 1.0 + lowest_point_arm(&s.shape) * (1.0 + mu) / (kappa * r);

@@ -32,6 +32,7 @@ use crate::error::Result;
 use crate::geometry::{Overlap, Shape};
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::record::{estimate_max_depth, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::law::vertex_springs;
 use crate::law::Forces;
 use crate::law::StickState;
 use crate::model::{Initial, Integrator, Model, NormalLaw, Scene};
@@ -125,7 +126,7 @@ enum Touch {
     /// The disc's circular segment.
     Disc,
     /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
-    /// lowest of them (it matters for the linear law only).
+    /// lowest of them (for the overlap's x_low only).
     Poly {
         first: usize,
         len: usize,
@@ -165,8 +166,6 @@ enum Event {
     EnterRight,
     LeaveLeft,
     LeaveRight,
-    LowLeft,
-    LowRight,
     ClipOff,
     ClipOn,
     ToSlip,
@@ -422,16 +421,25 @@ impl<'a> Reference<'a> {
                 o.depth,
             ),
             (Some((kn, cn)), _) => {
-                // One contact at the held deepest point (disc: r - y below the centre),
-                // continued smoothly; spring and dashpot act there (see `crate::law`).
-                let delta = self.low_depth(m.touch, s[Y], s[PHI]);
-                (
-                    kn * delta,
-                    cn * (-(vy + om * o.x_low)),
-                    o.x_low,
-                    o.x_low,
-                    o.depth,
-                )
+                let (f_el, f_d, x_el, x_damp) = match m.touch {
+                    // One spring-dashpot per held corner, continued smoothly beyond a
+                    // crossing (see `crate::law::vertex_springs`).
+                    Touch::Poly { first, len, .. } => {
+                        let sc = s[PHI].sin_cos();
+                        let held = (first..first + len).map(|k| {
+                            let (x, h) = self.corner(k, s[Y], sc);
+                            (-h, x)
+                        });
+                        vertex_springs(kn, cn, held, &[s[VX], vy, om])
+                    }
+                    // The disc: at its lowest point, r - y below the centre.
+                    _ => {
+                        let delta = self.low_depth(m.touch, s[Y], s[PHI]);
+                        let rate = -(vy + om * o.x_low);
+                        (kn * delta, cn * rate, o.x_low, o.x_low)
+                    }
+                };
+                (f_el, f_d, x_el, x_damp, o.depth)
             }
         };
         let fn_raw = f_el + f_d;
@@ -563,7 +571,7 @@ impl<'a> Reference<'a> {
                 return out;
             }
             Touch::Disc => out.push(Event::Separate),
-            Touch::Poly { first, len, low } => {
+            Touch::Poly { len, .. } => {
                 let n = self.verts.len();
                 if len + 1 < n {
                     out.push(Event::EnterLeft);
@@ -572,15 +580,6 @@ impl<'a> Reference<'a> {
                 out.push(Event::LeaveLeft);
                 if len > 1 {
                     out.push(Event::LeaveRight);
-                }
-                if self.linear().is_some() {
-                    let last = (first + len - 1) % n;
-                    if low != first {
-                        out.push(Event::LowLeft);
-                    }
-                    if low != last {
-                        out.push(Event::LowRight);
-                    }
                 }
             }
         }
@@ -611,8 +610,6 @@ impl<'a> Reference<'a> {
             (Event::EnterRight, Touch::Poly { first, len, .. }) => -poly(first + len),
             (Event::LeaveLeft, Touch::Poly { first, .. }) => poly(first),
             (Event::LeaveRight, Touch::Poly { first, len, .. }) => poly(first + len - 1),
-            (Event::LowLeft, Touch::Poly { low, .. }) => poly(low) - poly(low + n - 1),
-            (Event::LowRight, Touch::Poly { low, .. }) => poly(low) - poly(low + 1),
             (Event::ClipOff, _) => -self.eval(m, s).1.fn_raw,
             (Event::ClipOn, _) => {
                 // Only an overlap can push: once every held corner has risen above the plate
@@ -1153,16 +1150,6 @@ fn apply(ode: &Reference, m: &mut Mode, ev: Event, s: &mut State, t: f64, tally:
                     let low = if inside { low } else { first };
                     m.touch = Touch::Poly { first, len, low };
                 }
-            }
-        }
-        Event::LowLeft | Event::LowRight => {
-            if let Touch::Poly { first, len, low } = m.touch {
-                let low = if ev == Event::LowLeft {
-                    (low + n - 1) % n
-                } else {
-                    (low + 1) % n
-                };
-                m.touch = Touch::Poly { first, len, low };
             }
         }
         Event::ClipOff => {
