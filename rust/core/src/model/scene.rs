@@ -474,7 +474,7 @@ impl Model {
                     matches!(scene.shape, Shape::Disc { .. } | Shape::Sphere { .. }),
                     "inertia",
                     "sphere",
-                    "\"shape\" for polygons (\"sphere\" applies to discs only)"
+                    "\"shape\" for polygons (\"sphere\" applies to discs and spheres only)"
                 );
                 0.4 * mass * r * r
             }
