@@ -660,3 +660,50 @@ fn long_matrix() {
     println!("{:.0} s", start.elapsed().as_secs_f64());
     assert!(t.failures.is_empty(), "{} failures", t.failures.len());
 }
+
+/// Issue 18, item 3: the weak-friction gain of face-first polygons (area law, gamma = 0,
+/// gamma_t = 0, mu = 1e-9) per integrator at its default step.
+#[test]
+#[ignore]
+fn measure_weak_friction() {
+    for integrator in Integrator::ALL {
+        for (n, phi0) in [(4, 45.0), (3, 90.0), (5, 90.0)] {
+            let scene = default_step(Scene {
+                shape: Shape::regular_polygon(R, n).unwrap(),
+                gamma: 0.0,
+                gamma_t: 0.0,
+                mu: 1e-9,
+                integrator,
+                ..Scene::default()
+            });
+            let mut worst = (f64::NEG_INFINITY, 0.0, 0.0);
+            for theta in (5..=89).step_by(4) {
+                for w in [0.0, 0.5, -0.5] {
+                    let init = Initial::from_angle(V, theta as f64, w * V / R, phi0);
+                    let g = gain(&simulate(&scene, &init).unwrap());
+                    if g > worst.0 {
+                        worst = (g, theta as f64, w);
+                    }
+                }
+            }
+            println!(
+                "{:>9} {n}-gon phi0 {phi0}: worst gain {:+.2e} (theta {}, omega r/v {})",
+                integrator.name(),
+                worst.0,
+                worst.1,
+                worst.2
+            );
+        }
+    }
+    for n in [120usize, 30] {
+        let s = Scene {
+            shape: Shape::regular_polygon(R, n).unwrap(),
+            normal_law: NormalLaw::Linear { kn: 1e7, cn: 0.0 },
+            ..Scene::default()
+        };
+        println!(
+            "{n}-gon linear law, gear5 bound: dt_factor <= {}",
+            max_dt_factor(&s).unwrap()
+        );
+    }
+}
