@@ -67,7 +67,7 @@ def finite(rec: rs.Record) -> bool:
 
 
 def gains(p: dict, rec: rs.Record) -> bool:
-    """Energy gained beyond the integration error that MODEL.md accepts: 1e-6 of the input where damping
+    """Energy gained beyond the integration error that docs/model.md accepts: 1e-6 of the input where damping
     or friction act, 1e-2 for a conservative impact (whose O(dt^k) error may go either way)."""
     dissipative = p["gamma"] > 0.0 or p["mu"] > 0.0
     return rec.energy_out > rec.energy_in * (1.0 + (1e-6 if dissipative else 1e-2))

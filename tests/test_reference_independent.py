@@ -1,6 +1,6 @@
 """The reference integrator against an independent high-accuracy computation (issue 18).
 
-The polygon model is written here again from the equations of MODEL.md (overlap by clipping the
+The polygon model is written here again from the equations of docs/model.md (overlap by clipping the
 polygon to y <= 0, F_el = E A / L at the overlap centroid, F_d = gamma sqrt(m E) (dA/dt) / L at
 the chord midpoint with dA/dt = -l (v_y + omega (x_mid - x_cm)), both clipped to zero when their
 sum is negative), without calling the engine, and integrated with scipy's DOP853 at tight

@@ -253,7 +253,7 @@ struct FixedLoop<'a, S, G> {
     inv_mass: Dof,
     /// Polygons without friction: steps located on events and refined where the force
     /// changes within a step (see `events`), only without friction: with it the stick/slip
-    /// switches bound the fixed-step integrators to first order anyway (MODEL.md), and the
+    /// switches bound the fixed-step integrators to first order anyway (docs/model.md), and the
     /// restarts and refined steps measured no better e_n while they disturbed the energy
     /// balance of frictional spinning polygons (its residual rose from ~1e-7 to ~2e-6 at the
     /// default step), so those keep the plain steps.
