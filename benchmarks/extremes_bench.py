@@ -112,6 +112,9 @@ def main() -> None:
     print(f"records: {len(records)}: finite {sum(finite(r) for _, r, _ in records)}, "
           f"non-finite {sum(not finite(r) for _, r, _ in records)}, "
           f"energy-gaining {sum(gains(p, r) for _, r, p in records)}")
+    for _, r, p in records:
+        if gains(p, r):
+            print(f"  gains {r.energy_out / r.energy_in - 1:+.2e}: {describe(p)} ({r.steps} steps, stop {r.stop})")
     stops = Counter(getattr(r, "stop", "timed_out" if r.timed_out else "separated") for _, r, _ in records)
     print(f"  ended: {dict(stops)}")
     over = sum(s > 1.0 for s, *_ in results)
