@@ -10,8 +10,27 @@ from . import _core
 from ._engine import integer, real
 
 
+class _Round:
+    """What the exact disc and the sphere share: one radius, no corners, no orientation."""
+
+    r: float
+
+    def __post_init__(self) -> None:
+        _core.check_shape(0.0, real("r", self.r), 0.0)
+
+    @property
+    def n(self) -> int:
+        """Shape code in sweeps: 0, no corners (the engine's column ``body`` tells a sphere)."""
+        return 0
+
+    @property
+    def phi0_deg(self) -> float:
+        """Orientation at first touch (irrelevant for a round body)."""
+        return 0.0
+
+
 @dataclass(frozen=True, kw_only=False)
-class Disc:
+class Disc(_Round):
     """An exact disc (closed-form circular-segment overlap).
 
     Parameters
@@ -21,19 +40,6 @@ class Disc:
     """
 
     r: float = 0.01
-
-    def __post_init__(self) -> None:
-        _core.check_shape(0.0, real("r", self.r), 0.0)
-
-    @property
-    def n(self) -> int:
-        """Shape code in sweeps: 0 means an exact disc."""
-        return 0
-
-    @property
-    def phi0_deg(self) -> float:
-        """Orientation at first touch (irrelevant for a disc)."""
-        return 0.0
 
 
 @dataclass(frozen=True)
@@ -105,7 +111,7 @@ class ConvexPolygon:
 
 
 @dataclass(frozen=True, kw_only=False)
-class Sphere:
+class Sphere(_Round):
     """A sphere of radius ``r`` moving in its plane of incidence (x, y and the spin about z).
 
     A 3D body: mass 4/3 pi r^3 rho and moment of inertia 2/5 m r^2, and its records are per
@@ -119,19 +125,6 @@ class Sphere:
     """
 
     r: float = 0.0025
-
-    def __post_init__(self) -> None:
-        _core.check_shape(0.0, real("r", self.r), 0.0)
-
-    @property
-    def n(self) -> int:
-        """Shape code in sweeps: 0 (the engine's column ``body`` says "sphere")."""
-        return 0
-
-    @property
-    def phi0_deg(self) -> float:
-        """Orientation at first touch (irrelevant for a sphere)."""
-        return 0.0
 
 
 Shape = Disc | RegularPolygon | ConvexPolygon | Sphere
