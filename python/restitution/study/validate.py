@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import polars as pl
 
-from .. import theory
+from . import theory
 from ..runs.sweep import sweep
 from ..scene import Scene
 from ..shapes import Sphere
@@ -162,6 +162,13 @@ PUBLISHED_STYLE: dict[str, Any] = dict(ls="none", marker="s", ms=4, mfc="none")
 EXPERIMENT_STYLE: dict[str, Any] = dict(ls="none", marker="o", ms=5, color="black")
 
 
+def _save(fig, path: Path) -> None:
+    """Lays out, writes and closes a figure."""
+    fig.tight_layout()
+    fig.savefig(path)
+    _plt().close(fig)
+
+
 def figure_test2(traces: dict[str, pl.DataFrame], table: pl.DataFrame, path: Path) -> None:
     """Force against time, with Hertz's peak force and contact time marked."""
     plt = _plt()
@@ -174,9 +181,7 @@ def figure_test2(traces: dict[str, pl.DataFrame], table: pl.DataFrame, path: Pat
     ax.set(xlabel="time (us)", ylabel="normal force (kN)",
            title="Test 2: elastic sphere on a rigid plane (dashed: Hertz's peak force, contact time)")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def figure_test3(t3: pl.DataFrame, path: Path) -> None:
@@ -189,9 +194,7 @@ def figure_test3(t3: pl.DataFrame, path: Path) -> None:
         ax.plot(sub["cor"], sub["e_n"], "o", mfc="none", label=material)
     ax.set(xlabel="requested cor", ylabel="$e_N$ (3.9 m/s)", title="Test 3: head-on restitution")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def figure_test4(t4: pl.DataFrame, cases: tuple[str, ...], path: Path, title: str) -> None:
@@ -216,9 +219,7 @@ def figure_test4(t4: pl.DataFrame, cases: tuple[str, ...], path: Path, title: st
         ax.set(xlabel="incident angle from the normal (deg)", ylabel=label)
     axes[0].legend(fontsize=7)
     fig.suptitle(title)
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def figure_test6(t6: pl.DataFrame, path: Path) -> None:
@@ -233,9 +234,7 @@ def figure_test6(t6: pl.DataFrame, path: Path) -> None:
     ax.set(xscale="log", xlabel=r"$3.5\,\mu(1+e)\,v_n / V$", ylabel=r"$\beta$",
            title="Test 6: head-on impact of a spinning sphere")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(path)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def report(t2: pl.DataFrame, t3: pl.DataFrame, t4: pl.DataFrame, dev: pl.DataFrame) -> str:

@@ -377,8 +377,14 @@ pub(crate) fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
     let area = rrx * (sx * estrin9(&AREA_SERIES, x, x2, x4, x8));
     let d = r * estrin10(&CENTROID_SERIES, x, x2, x4, x8);
     let half_chord = (depth * (2.0 * r - depth)).sqrt();
+    Some(segment(y, depth, area, d, half_chord))
+}
+
+/// A disc's circular segment below the plate, from its area, the distance `d` of its centroid
+/// below the centre and its half chord (the series and the closed form share it).
+fn segment(y: f64, depth: f64, area: f64, d: f64, half_chord: f64) -> Overlap {
     let cy = y - d;
-    Some(Overlap {
+    Overlap {
         area,
         cx: 0.0,
         cy,
@@ -388,7 +394,7 @@ pub(crate) fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
         x_low: 0.0,
         first_moment: -area * cy,
         corners: Corners::default(),
-    })
+    }
 }
 
 /// The closed form of [`disc_segment`], valid at any depth.
@@ -408,18 +414,7 @@ fn disc_segment_closed(r: f64, y: f64) -> Option<Overlap> {
     } else {
         r
     };
-    let cy = y - d;
-    Some(Overlap {
-        area,
-        cx: 0.0,
-        cy,
-        chord: 2.0 * half_chord,
-        x_mid: 0.0,
-        depth,
-        x_low: 0.0,
-        first_moment: -area * cy,
-        corners: Corners::default(),
-    })
+    Some(segment(y, depth, area, d, half_chord))
 }
 
 impl Polygon {
