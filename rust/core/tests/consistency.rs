@@ -45,9 +45,13 @@ fn default_step(scene: Scene) -> Scene {
     let bound = max_dt_factor(&scene).unwrap();
     Scene {
         dt_factor: scene.dt_factor.min(bound),
+        tol: ADAPTIVE_TOL,
         ..scene
     }
 }
+
+/// The adaptive path's tolerance in the matrix (its documented bounds scale with it).
+const ADAPTIVE_TOL: f64 = 1e-9;
 
 fn linear_elastic(shape: Shape, mu: f64, integrator: Integrator) -> Scene {
     default_step(Scene {
@@ -193,6 +197,8 @@ fn documented_gain_bound(scene: &Scene) -> f64 {
     let polygon = !matches!(scene.shape, Shape::Disc { .. });
     match (scene.integrator, scene.normal_law, polygon) {
         (Integrator::Reference, _, _) => 1e-9,
+        // The adaptive path: its e_kin error is at most a few tol.
+        (Integrator::Adaptive, _, _) => 10.0 * scene.tol,
         // The linear force kinks at touch and separation (delta^1 against the area law's
         // delta^1.5) and at every corner crossing; a fixed step straddling a kink errs to
         // first order there (the disc's loop locates no events, frictional polygons neither).
@@ -209,7 +215,9 @@ fn documented_gain_bound(scene: &Scene) -> f64 {
 /// disc, above MODEL.md's 1e-6 (open, docs/consistency.md).
 fn documented_residual_bound(scene: &Scene) -> f64 {
     match (scene.integrator, scene.normal_law) {
-        (Integrator::Reference, _) | (_, NormalLaw::Area) | (_, NormalLaw::Hertz { .. }) => 1e-6,
+        (Integrator::Reference | Integrator::Adaptive, _)
+        | (_, NormalLaw::Area)
+        | (_, NormalLaw::Hertz { .. }) => 1e-6,
         (_, NormalLaw::Linear { .. }) => 2e-6,
     }
 }
@@ -282,6 +290,7 @@ fn accepted(scene: &Scene, mu: f64) -> Result<Scene, Error> {
     let bound = max_dt_factor(&scene)?;
     let scene = Scene {
         dt_factor: scene.dt_factor.min(bound),
+        tol: ADAPTIVE_TOL,
         ..scene
     };
     Model::new(&scene)?;
@@ -317,7 +326,7 @@ fn symmetry_tol(scene: &Scene) -> f64 {
         // Its error control ends near-simultaneous events at slightly different points in a
         // mirrored, turned or rescaled scene (measured: up to 2.3e-7 on a turned pentagon
         // through parry; 5e-8 for a rescaled disc at mu 1e3).
-        Integrator::Reference => 1e-6,
+        Integrator::Reference | Integrator::Adaptive => 1e-6,
         // The same operations on differently rounded corners: round-off, amplified by the
         // stick/slip switches of frictional polygons (measured: up to 1.7e-8) and by the
         // re-contacts of a tumbling triangle (9.5e-7 after a 120 deg turn, linear law), far
@@ -426,7 +435,7 @@ fn check_impact(
         // The reference budgets the whole impact, free flight included, where the fixed
         // steps budget contact only: a polygon flung round by a stiff linear spring may fly
         // longer than 100 contact times before its next corner comes down (open).
-        if scene.integrator == Integrator::Reference {
+        if scene.integrator.is_adaptive() {
             t.timed_out.push(what);
             return;
         }
@@ -564,7 +573,7 @@ fn regular_n(label: &str) -> Option<usize> {
 /// bound (it falls like 1 / sqrt(mu): a stuck triangle then takes 5e7 steps).
 fn huge_mu(scene: &Scene) -> f64 {
     let polygon = !matches!(scene.shape, Shape::Disc { .. });
-    if polygon && scene.integrator != Integrator::Reference {
+    if polygon && !scene.integrator.is_adaptive() {
         10.0
     } else {
         1e3

@@ -125,7 +125,7 @@ fn richardson_estimate(
     init: &Initial,
     rec: &Record,
     cancel: &Cancel,
-) -> Result<f64> {
+) -> Result<Option<f64>> {
     let scene = &model.scene;
     let half = Model::derive(&Scene {
         dt_factor: 0.5 * scene.dt_factor,
@@ -137,14 +137,14 @@ fn richardson_estimate(
     // A half step the budget refuses (over 4e6 steps) leaves the estimate undefined.
     let fine = match run_fixed(&half, init, depth_est, None, cancel) {
         Err(crate::error::Error::Interrupted) => return Err(crate::error::Error::Interrupted),
-        Err(_) => return Ok(f64::NAN),
+        Err(_) => return Ok(None),
         Ok(fine) => fine,
     };
     if rec.timed_out || fine.timed_out {
-        return Ok(f64::NAN);
+        return Ok(None);
     }
     let speed = init.vx.hypot(init.vy);
-    Ok(4.0 * rec.accuracy_distance(&fine, model.r, speed))
+    Ok(Some(4.0 * rec.accuracy_distance(&fine, model.r, speed)))
 }
 
 /// One impact with a fixed-step integrator (validated model and initial state).
@@ -342,7 +342,6 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
             rec: Record {
                 contacts: 1,
                 step_budget: limits.max_steps,
-                err_est: f64::NAN,
                 ..Record::default()
             },
         }

@@ -107,8 +107,8 @@ pub struct Record {
     /// Estimated largest absolute error among e_N, e_T, e_kin and omega_out r / v (v the
     /// impact speed): the adaptive path's from its local error estimates, a fixed-step
     /// integrator's from a second run at half the step when `Scene::error_estimate` is set;
-    /// NaN otherwise.
-    pub err_est: f64,
+    /// `None` otherwise (and when the half-step run did not finish).
+    pub err_est: Option<f64>,
 }
 
 impl Record {
@@ -149,11 +149,6 @@ pub enum Cell {
     Name(&'static str),
 }
 
-/// A value that NaN marks as undefined (`err_est` when not estimated).
-fn defined(x: f64) -> Option<f64> {
-    (!x.is_nan()).then_some(x)
-}
-
 /// Names the record's columns and reads them, in one list: the schema every binding exports.
 macro_rules! record_columns {
     ($($name:ident: $kind:ident $(as $cast:ty)? $(=> $map:path)?),* $(,)?) => {
@@ -175,7 +170,7 @@ record_columns! {
     max_depth: F64, max_area: F64, slip_events: Int, energy_in: F64, energy_out: F64,
     work_normal: F64, work_friction: F64, energy_residual: F64, separated: Bool,
     timed_out: Bool, step_budget: Int, stop: Name => StopReason::name,
-    err_est: Opt => defined,
+    err_est: Opt,
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).

@@ -1137,7 +1137,7 @@ pub(crate) fn integrate(
         timed_out: stop != StopReason::Separated,
         step_budget: max_steps,
         stop,
-        err_est: error_estimate(&err_acc, init, r),
+        err_est: Some(error_estimate(&err_acc, init, r)),
     })
 }
 
