@@ -59,7 +59,7 @@ class Scene:
     setting: accurate to about 1e-10)."""
     dt_factor: float = 0.01
     """dt = dt_factor * t_ref; at most ``max_dt_factor`` (the integrator's stability bound for this scene's
-    stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "reference" it is the largest
+    stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "adaptive" and "reference" it is the largest
     (and first) step instead: its accuracy is set by its tolerance, so use dt_factor=1 for speed."""
     normal_law: str = "area"
     """"area" (force proportional to overlap area), "linear" (spring-dashpot on the depth) or
