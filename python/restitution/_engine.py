@@ -30,6 +30,16 @@ CHOICES: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.CHOICES.ite
 OPTIONAL = {"kn": "> 0", "cn": ">= 0", "kt": "> 0", "nu": "in (-1, 0.5]", "plate_E": "> 0",
             "plate_nu": "in (-1, 0.5]", "cor": "in [0.01, 1]", "max_steps": "a whole number >= 1"}
 
+#: Flags: bool in Python, 0 / 1 in the engine's columns.
+FLAGS = ("error_estimate",)
+
+
+def flag(name: str, value: Any) -> float:
+    """A flag (bool, or the engine's 0 / 1) as 0.0 or 1.0."""
+    if isinstance(value, (bool, np.bool_)) or (isinstance(value, numbers.Real) and value in (0, 1)):
+        return float(bool(value))
+    raise TypeError(f"`{name}` must be True or False (found {type(value).__name__} {value!r})")
+
 
 def real(name: str, value: Any) -> float:
     """A real number (bool excluded) as float; the engine checks its range."""

@@ -54,11 +54,12 @@ class Scene:
     v: float = 0.0357
     """Impact speed (m/s)."""
     integrator: str = "gear5"
-    """"gear5" (the study's), "verlet" (cheap) or "reference" (adaptive Dormand-Prince 5(4) with the
-    contact's switches located: accurate to about 1e-10, a few times slower than gear5 at dt_factor 1)."""
+    """"gear5" (the study's), "verlet" (cheap), "adaptive" (Dormand-Prince 5(4) with the contact's
+    switches located, to the accuracy ``tol``) or "reference" (the adaptive path at its tightest
+    setting: accurate to about 1e-10)."""
     dt_factor: float = 0.01
     """dt = dt_factor * t_ref; at most ``max_dt_factor`` (the integrator's stability bound for this scene's
-    stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "reference" it is the largest
+    stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset). For "adaptive" and "reference" it is the largest
     (and first) step instead: its accuracy is set by its tolerance, so use dt_factor=1 for speed."""
     normal_law: str = "area"
     """"area" (force proportional to overlap area), "linear" (spring-dashpot on the depth) or
@@ -87,6 +88,12 @@ class Scene:
     overlap: str = "auto"
     """Overlap with the plate: "auto" (closed-form segment for a disc, half-plane clip for a
     polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""
+    tol: float = 1e-6
+    """Target absolute error of e_N, e_T, e_kin and omega_out r / v for ``integrator="adaptive"``,
+    in [1e-12, 1e-2]; its records estimate their own error in ``err_est``. Ignored by the others."""
+    error_estimate: bool = False
+    """gear5 / verlet: estimate each record's error (``err_est``) from a second run at half the step
+    (costs 3x); the adaptive path always estimates it. False: ``err_est`` is null."""
     max_steps: int | None = None
     """Most integration steps one impact may take (>= 1): past it the impact ends with
     ``timed_out = True`` and ``stop = "step_budget"``. None: the default budget, a fixed multiple
@@ -118,6 +125,8 @@ class Scene:
             value = getattr(self, name)
             if name in _engine.CHOICES:
                 values[name] = float(_engine.code(name, value))
+            elif name in _engine.FLAGS:
+                values[name] = _engine.flag(name, value)
             elif name in _engine.OPTIONAL:
                 values[name] = _engine.optional(name, value)
             else:

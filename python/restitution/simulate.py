@@ -62,6 +62,10 @@ class Record:
     """The step budget it ran under: ``Scene.max_steps`` or the default (``steps <= step_budget``)."""
     stop: str
     """Why it ended: "separated", "step_budget", "contact_time_budget" or "non_finite"."""
+    err_est: float | None
+    """Estimated largest absolute error among e_N, e_T, e_kin and omega_out r / v: always for
+    ``integrator="adaptive"`` / ``"reference"``, for gear5 / verlet with ``Scene(error_estimate=True)``;
+    None otherwise (null in frames)."""
     trace: pl.DataFrame | None = None
     """Per-step history when ``simulate(..., trace=True)``: t, x, y, phi, vx, vy, omega, f_n, f_t,
     area, depth, xi, stick (0 none, 1 stick, 2 slip)."""

@@ -45,9 +45,13 @@ fn default_step(scene: Scene) -> Scene {
     let bound = max_dt_factor(&scene).unwrap();
     Scene {
         dt_factor: scene.dt_factor.min(bound),
+        tol: ADAPTIVE_TOL,
         ..scene
     }
 }
+
+/// The adaptive path's tolerance in the matrix (its documented bounds scale with it).
+const ADAPTIVE_TOL: f64 = 1e-9;
 
 fn linear_elastic(shape: Shape, mu: f64, integrator: Integrator) -> Scene {
     default_step(Scene {
@@ -193,6 +197,8 @@ fn documented_gain_bound(scene: &Scene) -> f64 {
     let polygon = !matches!(scene.shape, Shape::Disc { .. });
     match (scene.integrator, scene.normal_law, polygon) {
         (Integrator::Reference, _, _) => 1e-9,
+        // The adaptive path: its e_kin error is at most a few tol.
+        (Integrator::Adaptive, _, _) => 10.0 * scene.tol,
         // The linear force kinks at touch and separation (delta^1 against the area law's
         // delta^1.5) and at every corner crossing; a fixed step straddling a kink errs to
         // first order there (the disc's loop locates no events, frictional polygons neither).
@@ -210,7 +216,9 @@ fn documented_gain_bound(scene: &Scene) -> f64 {
 /// disc, above docs/model.md's 1e-6 (open, docs/consistency.md).
 fn documented_residual_bound(scene: &Scene) -> f64 {
     match (scene.integrator, scene.normal_law) {
-        (Integrator::Reference, _) | (_, NormalLaw::Area) | (_, NormalLaw::Hertz { .. }) => 1e-6,
+        (Integrator::Reference | Integrator::Adaptive, _)
+        | (_, NormalLaw::Area)
+        | (_, NormalLaw::Hertz { .. }) => 1e-6,
         (_, NormalLaw::Linear { .. }) => 2e-6,
     }
 }
@@ -293,6 +301,7 @@ fn accepted(scene: &Scene, mu: f64) -> Result<Scene, Error> {
     let bound = max_dt_factor(&scene)?;
     let scene = Scene {
         dt_factor: scene.dt_factor.min(bound),
+        tol: ADAPTIVE_TOL,
         ..scene
     };
     Model::new(&scene)?;
@@ -328,7 +337,7 @@ fn symmetry_tol(scene: &Scene) -> f64 {
         // Its error control ends near-simultaneous events at slightly different points in a
         // mirrored, turned or rescaled scene (measured: up to 2.3e-7 on a turned pentagon
         // through parry; 5e-8 for a rescaled disc at mu 1e3).
-        Integrator::Reference => 1e-6,
+        Integrator::Reference | Integrator::Adaptive => 1e-6,
         // The same operations on differently rounded corners: round-off, amplified by the
         // stick/slip switches of frictional polygons (measured: up to 1.7e-8) and by the
         // re-contacts of a tumbling triangle (9.5e-7 after a 120 deg turn, linear law), far
@@ -453,7 +462,7 @@ fn check_impact(
         // The reference budgets the whole impact, free flight included, where the fixed
         // steps budget contact only: a polygon flung round by a stiff linear spring may fly
         // longer than 100 contact times before its next corner comes down (open).
-        if scene.integrator == Integrator::Reference {
+        if scene.integrator.is_adaptive() {
             t.timed_out.push(what);
             return;
         }
@@ -568,9 +577,15 @@ fn check_disc_limits(what: &str, scene: &Scene, init: &Initial, rec: &Record, t:
             .unwrap_or(0.5);
         let r = scene.shape.circumradius();
         let rolling = 1.0 / (1.0 + kappa) - kappa * r * init.omega / ((1.0 + kappa) * init.vx);
-        // The documented micro-slip oscillation at gamma_t = 0.5 is +-1.3 % of e_T.
+        // The documented micro-slip oscillation at gamma_t = 0.5 is +-1.3 % of e_T at
+        // omega_in = 0 (2 % allowed). It is the tangential spring's ring-down after the contact
+        // point stops, so it scales with the impulse that stops it, kappa / (1 + kappa) m u0,
+        // u0 = v_x + r omega_in the incident slip: the window is 2 % of e_T's rolling value at
+        // omega_in = 0, scaled by u0 / v_x.
+        let slip = (init.vx + r * init.omega) / init.vx;
+        let window = 0.04 * kappa / (1.0 + kappa) * slip.abs();
         let e_t = rec.e_t.unwrap_or(f64::NAN);
-        if (e_t - rolling).abs() > 0.02 * rolling.abs().max(0.5) {
+        if (e_t - rolling).abs() > window {
             t.fail(format!("{what}: rolling limit e_T {e_t} vs {rolling}"));
         }
     }
@@ -591,7 +606,7 @@ fn regular_n(label: &str) -> Option<usize> {
 /// bound (it falls like 1 / sqrt(mu): a stuck triangle then takes 5e7 steps).
 fn huge_mu(scene: &Scene) -> f64 {
     let polygon = !matches!(scene.shape, Shape::Disc { .. });
-    if polygon && scene.integrator != Integrator::Reference {
+    if polygon && !scene.integrator.is_adaptive() {
         10.0
     } else {
         1e3

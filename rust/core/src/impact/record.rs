@@ -104,6 +104,34 @@ pub struct Record {
     pub timed_out: bool,
     /// Why the impact ended (`timed_out` is `stop != Separated`).
     pub stop: StopReason,
+    /// Estimated largest absolute error among e_N, e_T, e_kin and omega_out r / v (v the
+    /// impact speed): the adaptive path's from its local error estimates, a fixed-step
+    /// integrator's from a second run at half the step when `Scene::error_estimate` is set;
+    /// `None` otherwise (and when the half-step run did not finish).
+    pub err_est: Option<f64>,
+}
+
+impl Record {
+    /// The four outputs whose error `err_est` bounds: e_N, e_T (0 when undefined), e_kin and
+    /// omega_out r / v, v the impact speed `speed`.
+    pub fn accuracy_outputs(&self, r: f64, speed: f64) -> [f64; 4] {
+        [
+            self.e_n,
+            self.e_t.unwrap_or(0.0),
+            self.e_kin,
+            self.omega_out * r / speed,
+        ]
+    }
+
+    /// The largest absolute difference between the four outputs of two records of the same
+    /// impact ([`Record::accuracy_outputs`]).
+    pub fn accuracy_distance(&self, other: &Record, r: f64, speed: f64) -> f64 {
+        let (a, b) = (
+            self.accuracy_outputs(r, speed),
+            other.accuracy_outputs(r, speed),
+        );
+        (0..4).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
+    }
 }
 
 /// One value of a record column, as a binding stores it.
@@ -142,6 +170,7 @@ record_columns! {
     max_depth: F64, max_area: F64, slip_events: Int, energy_in: F64, energy_out: F64,
     work_normal: F64, work_friction: F64, energy_residual: F64, separated: Bool,
     timed_out: Bool, step_budget: Int, stop: Name => StopReason::name,
+    err_est: Opt,
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).

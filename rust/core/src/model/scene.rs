@@ -129,13 +129,27 @@ pub enum Integrator {
     /// Velocity Verlet; velocity-dependent forces see the predicted velocity v + a dt.
     Verlet,
     /// High-accuracy reference: adaptive Dormand-Prince 5(4) with the contact's switches
-    /// located (see [`crate::integrate::adaptive`]); `dt_factor` is its largest step in units of t_ref.
+    /// located (see [`crate::integrate::adaptive`]) at its tightest setting; `dt_factor` is its
+    /// largest step in units of t_ref.
     Reference,
+    /// The same adaptive path at the scene's [`Scene::tol`]: the target for the absolute error
+    /// of e_N, e_T, e_kin and omega_out r / v; `dt_factor` is its largest step.
+    Adaptive,
 }
 
 impl Integrator {
     /// Every integrator, in code order (the consistency matrix runs them all).
-    pub const ALL: [Integrator; 3] = [Integrator::Gear5, Integrator::Verlet, Integrator::Reference];
+    pub const ALL: [Integrator; 4] = [
+        Integrator::Gear5,
+        Integrator::Verlet,
+        Integrator::Reference,
+        Integrator::Adaptive,
+    ];
+
+    /// Whether it is the adaptive Dormand-Prince path (`Reference` or `Adaptive`).
+    pub fn is_adaptive(self) -> bool {
+        matches!(self, Integrator::Reference | Integrator::Adaptive)
+    }
 
     /// Largest accepted stiffness index h = dt * (fastest rate of the contact), the measured
     /// stability bound divided by a safety margin of 2 (and rounded down); see
@@ -158,7 +172,7 @@ impl Integrator {
         match self {
             Integrator::Gear5 => 0.065,
             Integrator::Verlet => 0.098,
-            Integrator::Reference => f64::INFINITY,
+            Integrator::Reference | Integrator::Adaptive => f64::INFINITY,
         }
     }
 
@@ -168,6 +182,7 @@ impl Integrator {
             Integrator::Gear5 => "gear5",
             Integrator::Verlet => "verlet",
             Integrator::Reference => "reference",
+            Integrator::Adaptive => "adaptive",
         }
     }
 }
@@ -210,6 +225,13 @@ pub struct Scene {
     /// `timed_out` and `stop = StepBudget`. `None`: the default budget, a fixed multiple of
     /// the contact's own number of steps ([`crate::impact::default_step_budget`]).
     pub max_steps: Option<u64>,
+    /// Target for the absolute error of e_N, e_T, e_kin and omega_out r / v of the adaptive
+    /// integrator (`Integrator::Adaptive`; default 1e-6, in [1e-12, 1e-2]). Ignored by the
+    /// others (`Reference` runs at its tightest setting).
+    pub tol: f64,
+    /// Whether the fixed-step integrators estimate their own error (`Record::err_est`) by a
+    /// second run at half the step (Richardson); the adaptive path always does, at no cost.
+    pub error_estimate: bool,
 }
 
 impl Default for Scene {
@@ -229,6 +251,8 @@ impl Default for Scene {
             overlap: OverlapMethod::Auto,
             tangential: TangentialModel::Auto,
             max_steps: None,
+            tol: 1e-6,
+            error_estimate: false,
         }
     }
 }
@@ -462,6 +486,12 @@ impl Model {
                 ">= 1 (or unset for the default budget)"
             );
         }
+        ensure_param!(
+            (1e-12..=1e-2).contains(&scene.tol),
+            "tol",
+            scene.tol,
+            "in [1e-12, 1e-2] (the target absolute error of e_N, e_T, e_kin, omega_out r / v)"
+        );
         let r = scene.shape.circumradius();
         positive("r", r)?;
         scene.overlap.check_shape(&scene.shape)?;
@@ -578,7 +608,7 @@ impl Model {
 /// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
 /// Adding a parameter means a field of [`Scene`], a name here and its line in
 /// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
-pub const CASE_COLUMNS: [&str; 26] = [
+pub const CASE_COLUMNS: [&str; 28] = [
     "theta_deg",
     "omega_in",
     "v",
@@ -605,13 +635,15 @@ pub const CASE_COLUMNS: [&str; 26] = [
     "tangential",
     "body",
     "max_steps",
+    "tol",
+    "error_estimate",
 ];
 
 /// Public names of every choice, in code order: a choice column holds the index of its name.
 /// `body`: "prism" is a 2D body per unit depth (the disc or polygon the column `n` names),
 /// "sphere" a sphere of radius `r` (then `n` must be 0).
 pub const CHOICES: [(&str, &[&str]); 6] = [
-    ("integrator", &["gear5", "verlet", "reference"]),
+    ("integrator", &["gear5", "verlet", "reference", "adaptive"]),
     ("normal_law", &["area", "linear", "hertz"]),
     ("inertia", &["shape", "sphere"]),
     ("overlap", &["auto", "halfplane", "parry"]),
@@ -660,6 +692,17 @@ fn optional(value: f64) -> Option<f64> {
     (!value.is_nan()).then_some(value)
 }
 
+/// A flag column: 0 or 1.
+fn flag(name: &str, value: f64) -> Result<bool> {
+    ensure_param!(
+        value == 0.0 || value == 1.0,
+        name,
+        value,
+        "0 (false) or 1 (true)"
+    );
+    Ok(value == 1.0)
+}
+
 /// The `max_steps` column: NaN for the default budget, else a whole number >= 1 (below
 /// 2^63, exactly representable up to 2^53).
 fn step_budget(value: f64) -> Result<Option<u64>> {
@@ -703,7 +746,7 @@ pub fn scene_from_columns(
     row: &[f64; CASE_COLUMNS.len()],
     vertices: Option<&[[f64; 2]]>,
 ) -> Result<(Scene, Initial)> {
-    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body, max_steps] =
+    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body, max_steps, tol, error_estimate] =
         *row;
     check_theta(theta)?;
     positive("v", v)?;
@@ -744,8 +787,7 @@ pub fn scene_from_columns(
         kt: optional(kt),
         normal_law,
         inertia: [InertiaModel::Shape, InertiaModel::Sphere][choice("inertia", inertia)?],
-        integrator: [Integrator::Gear5, Integrator::Verlet, Integrator::Reference]
-            [choice("integrator", integ)?],
+        integrator: Integrator::ALL[choice("integrator", integ)?],
         dt_factor: dtf,
         overlap: [
             OverlapMethod::Auto,
@@ -758,6 +800,8 @@ pub fn scene_from_columns(
             TangentialModel::Mindlin,
         ][choice("tangential", tangential)?],
         max_steps: step_budget(max_steps)?,
+        tol,
+        error_estimate: flag("error_estimate", error_estimate)?,
     };
     Ok((scene, Initial::from_angle(v, theta, omega, phi0)))
 }

@@ -233,8 +233,41 @@ impl Model {
     /// rounded down to three significant digits (at most 1: `Reference`'s largest step).
     pub fn max_dt_factor(&self) -> f64 {
         let h = self.scene.integrator.max_stiffness_index();
-        let rate = self.contact_rates().fastest().0;
+        if h.is_infinite() {
+            // The adaptive path: its largest step, whatever the rates.
+            return 1.0;
+        }
+        let rate = self.fastest_rate_cached();
         round_down_3((h / (rate * self.t_ref)).min(1.0))
+    }
+
+    /// The fastest contact rate, computed once per distinct scene and thread: a sweep over
+    /// angles and spins (the [`crate::model::Initial`], not the scene) pays for the sampling
+    /// of [`Model::contact_rates`] once. The rates do not depend on the numerics (integrator,
+    /// `dt_factor`, budget, tolerance), which the cache's key leaves out.
+    fn fastest_rate_cached(&self) -> f64 {
+        use std::cell::RefCell;
+        thread_local! {
+            static LAST: RefCell<Option<(Scene, f64)>> = const { RefCell::new(None) };
+        }
+        let key = Scene {
+            integrator: Integrator::Gear5,
+            dt_factor: 0.0,
+            max_steps: None,
+            tol: 0.0,
+            error_estimate: false,
+            ..self.scene.clone()
+        };
+        LAST.with(|last| {
+            if let Some((scene, rate)) = last.borrow().as_ref() {
+                if *scene == key {
+                    return *rate;
+                }
+            }
+            let rate = self.contact_rates().fastest().0;
+            *last.borrow_mut() = Some((key, rate));
+            rate
+        })
     }
 
     /// What sets [`Model::max_dt_factor`], in words (for messages): the fastest rate, its
@@ -252,7 +285,7 @@ impl Model {
             ("the tangential damping", _) => format!(" (gamma_t = {})", s.gamma_t),
             _ => String::new(),
         };
-        if s.integrator == Integrator::Reference {
+        if s.integrator.is_adaptive() {
             "its largest step".to_string()
         } else {
             format!(

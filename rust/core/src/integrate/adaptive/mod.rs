@@ -50,6 +50,29 @@ pub struct ReferenceOptions {
     pub max_step_factor: Option<f64>,
 }
 
+/// The local tolerance per unit of the target error `Scene::tol` of the adaptive integrator:
+/// global errors of the four outputs come out below the accumulated local errors, measured
+/// over the accuracy grid (`tests/adaptive.rs`).
+pub const LOCAL_TOL_PER_TARGET: f64 = 0.05;
+
+/// Factor on the accumulated local error estimates that makes `err_est` (calibrated over the
+/// accuracy grid, `tests/adaptive.rs`).
+pub const ERR_EST_FACTOR: f64 = 0.5;
+
+impl ReferenceOptions {
+    /// The settings a scene asks for: the reference's for `Integrator::Reference`, the scene's
+    /// tolerance for `Integrator::Adaptive`; the largest step is the scene's `dt_factor`.
+    pub fn for_scene(scene: &Scene) -> Self {
+        match scene.integrator {
+            Integrator::Adaptive => ReferenceOptions {
+                tol: scene.tol * LOCAL_TOL_PER_TARGET,
+                max_step_factor: None,
+            },
+            _ => ReferenceOptions::default(),
+        }
+    }
+}
+
 impl Default for ReferenceOptions {
     fn default() -> Self {
         ReferenceOptions {
@@ -250,6 +273,8 @@ struct Step {
     y1: State,
     k: [State; 7],
     h: f64,
+    /// The embedded error estimate of each component (5th minus 4th order).
+    err: State,
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pull: Option<f64>,
@@ -539,22 +564,44 @@ impl<'a> Reference<'a> {
             }
             y1[i] += h * acc;
         }
+        let err_vec: State =
+            std::array::from_fn(|i| h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>());
         // The spring elongation is not integrated outside stick (there it is algebraic).
         let err = (0..NS)
             .filter(|&i| i != XI || m.tan == Tan::Stick)
-            .map(|i| {
-                let e: f64 = h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>();
-                e.abs() / (self.tol * self.scale[i])
-            })
+            .map(|i| err_vec[i].abs() / (self.tol * self.scale[i]))
             .fold(0.0, f64::max);
         let step = Step {
             y0: *y0,
             y1,
             k,
             h,
+            err: err_vec,
             pull,
         };
         (step, err)
+    }
+
+    /// The largest step near a point where a disc's force is not smooth (touch and
+    /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
+    /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
+    /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
+    /// first after touch, and towards separation the steps halve the time left until then.
+    fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, t_est: f64) -> f64 {
+        let smooth_law = self.linear().is_some();
+        if smooth_law || m.touch != Touch::Disc {
+            return f64::INFINITY;
+        }
+        let h_sing = t_est * self.tol.powf(2.0 / 3.0);
+        if fresh_touch {
+            return h_sing;
+        }
+        let depth = self.model.r - s[Y];
+        if s[VY] > 0.0 && depth > 0.0 {
+            (0.5 * depth / s[VY]).max(h_sing)
+        } else {
+            f64::INFINITY
+        }
     }
 
     /// Whether the clip is watched in mode `m`: on, with an overlap, not held for chattering.
@@ -762,6 +809,54 @@ struct Tally {
     max_area: f64,
 }
 
+/// Smallest error scale of a velocity component, relative to the impact's speed.
+const SCALE_FLOOR: f64 = 1e-3;
+
+/// The error scale of each state component, from the impact's own scales (so that a scene
+/// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
+/// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
+/// spin; the speed where a component is zero), the positions' what those velocities cover
+/// in t_c / pi, the spring's the force that moves vx in t_c, the works' the energy.
+fn error_scales(model: &Model, init: &Initial, speed: f64, t_est: f64, energy: f64) -> State {
+    let r = model.r;
+    let v_in = init.vx.hypot(init.vy);
+    // Floored at 1e-3 of the speed (spin included): a component far below the others (a
+    // grazing impact's v_y, a spinning body's v_x) cannot be followed to `tol` of itself in
+    // double precision, and asking for it costs millions of steps (a triangle at 0.01 deg and
+    // 1e4 deg/s took 3e7). Over the study's grid (theta >= 4 deg) no floor is reached.
+    let or_speed = |x: f64| x.clamp(SCALE_FLOOR * speed, speed);
+    let mut scale = [0.0; NS];
+    scale[VX] = or_speed(init.vx.abs());
+    scale[VY] = or_speed(init.vy.abs());
+    scale[OM] = or_speed(v_in) / r;
+    let t_c = t_est / PI;
+    scale[X] = scale[VX] * t_c;
+    scale[Y] = scale[VY] * t_c;
+    scale[PHI] = scale[OM] * t_c;
+    // Mindlin's xi is a force (section 14.4).
+    let force_scale = model.mass * scale[VX] / t_est;
+    scale[XI] = force_scale / if model.mindlin { 1.0 } else { model.kt };
+    scale[W_EL] = energy;
+    scale[W_D] = energy;
+    scale[W_T] = energy;
+    scale
+}
+
+/// `err_est` from the local error estimates accumulated over the accepted steps (absolute
+/// values, components VX, VY, OM): the largest over e_N, e_T, e_kin and omega_out r / v.
+fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
+    let v_in = init.vx.hypot(init.vy);
+    let e_t = if init.vx != 0.0 {
+        acc[VX] / init.vx.abs()
+    } else {
+        0.0
+    };
+    let e_n = acc[VY] / init.vy.abs();
+    let e_kin = acc[VX].hypot(acc[VY]) / v_in;
+    let spin = acc[OM] * r / v_in;
+    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin)
+}
+
 /// Integrates one impact from first touch (validated scene and initial state).
 pub(crate) fn integrate(
     model: &Model,
@@ -778,19 +873,7 @@ pub(crate) fn integrate(
     let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
     let energy_in = 0.5 * model.mass * (init.vx * init.vx + init.vy * init.vy)
         + 0.5 * model.inertia * init.omega * init.omega;
-    let force_scale = model.mass * speed / t_est;
-    let mut scale = [0.0; NS];
-    scale[X] = depth_est;
-    scale[Y] = depth_est;
-    scale[PHI] = depth_est / r;
-    scale[VX] = speed;
-    scale[VY] = speed;
-    scale[OM] = speed / r;
-    // Mindlin's xi is a force (section 14.4).
-    scale[XI] = force_scale / if model.mindlin { 1.0 } else { model.kt };
-    scale[W_EL] = energy_in;
-    scale[W_D] = energy_in;
-    scale[W_T] = energy_in;
+    let scale = error_scales(model, init, speed, t_est, energy_in);
     let verts = shape.vertices();
     let ode = Reference {
         model,
@@ -845,6 +928,9 @@ pub(crate) fn integrate(
     let (mut chatter_t, mut chatter_c) = (0u32, 0u32);
     let mut hold_tangential = false;
     let mut stop = StopReason::Separated;
+    let mut err_acc: State = [0.0; NS];
+    // The first step of a contact starts at a point where the disc's force is not smooth.
+    let mut fresh_touch = true;
 
     let (mut k1, e0) = ode.eval(&mode, &s);
     if let Some(tr) = trace.as_deref_mut() {
@@ -865,7 +951,9 @@ pub(crate) fn integrate(
             stop = StopReason::ContactTimeBudget;
             break;
         }
-        h = h.min(h_max);
+        h = h
+            .min(h_max)
+            .min(ode.singular_cap(&mode, &s, fresh_touch, t_est));
         if n_corners > 0 && s[OM] != 0.0 {
             // A turning polygon brings corners to the plate: step finely enough (a quarter of
             // the angle between corners) that no corner touches and leaves within one step,
@@ -934,16 +1022,19 @@ pub(crate) fn integrate(
                 continue;
             }
         }
-        let (s_new, h_taken, event) = match first {
-            None => (step.y1, h, None),
-            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev)),
-            Some((th, ev)) if th * h <= 0.0 => (s, 0.0, Some(ev)),
+        let (s_new, h_taken, event, err_taken) = match first {
+            None => (step.y1, h, None, step.err),
+            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev), step.err),
+            Some((th, ev)) if th * h <= 0.0 => (s, 0.0, Some(ev), [0.0; NS]),
             Some((th, ev)) => {
                 // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
                 let (st, _) = ode.dp_step(&mode, &s, &k1, th * h);
-                (st.y1, th * h, Some(ev))
+                (st.y1, th * h, Some(ev), st.err)
             }
         };
+        for i in [VX, VY, OM] {
+            err_acc[i] += err_taken[i].abs();
+        }
         if event.is_none() {
             zero_pieces = 0;
         }
@@ -955,6 +1046,7 @@ pub(crate) fn integrate(
             _ => {}
         }
         if h_taken > 0.0 {
+            fresh_touch = false;
             steps += 1;
             zero_pieces = 0;
             // Only a stick phase of some length counts for slip events (a guess of stick at
@@ -976,6 +1068,7 @@ pub(crate) fn integrate(
             }
         }
         if let Some(ev) = event {
+            fresh_touch |= ev == Event::Touch;
             apply(&ode, &mut mode, ev, &mut s, t, &mut tally);
         }
         if chatter_c >= 16 && !mode.clip_on {
@@ -1051,6 +1144,7 @@ pub(crate) fn integrate(
         timed_out: stop != StopReason::Separated,
         step_budget: max_steps,
         stop,
+        err_est: Some(error_estimate(&err_acc, init, r)),
     })
 }
 
