@@ -53,7 +53,7 @@ def test_bound_is_accepted_and_anything_above_refused() -> None:
 def test_preset_bound_is_not_below_the_former_fixed_values() -> None:
     # The former fixed bounds were 0.03 (gear5) and 0.1 (verlet) for every scene.
     assert rs.MAX_DT_FACTOR == {"gear5": rs.Scene().max_dt_factor, "verlet": rs.Scene(integrator="verlet").max_dt_factor,
-                                "reference": 1.0}
+                                "reference": 10.0, "adaptive": 10.0}
     assert rs.Scene.paper().max_dt_factor >= 0.03
     assert rs.Scene.paper(integrator="verlet").max_dt_factor >= 0.1
 
