@@ -1,5 +1,5 @@
 """``restitution accuracy``: argument parsing for :mod:`restitution.study.accuracy` (error against
-the reference integrator vs cost, per integrator, dt_factor and shape)."""
+the reference integrator vs cost, per integrator, dt_factor or tol, and shape)."""
 
 from __future__ import annotations
 
@@ -8,12 +8,13 @@ import time
 from pathlib import Path
 
 NAME = "accuracy"
-HELP = "error against the reference integrator vs cost, per integrator, dt_factor and shape: table + Pareto plot"
+HELP = ("error against the reference integrator vs cost, per integrator, dt_factor (gear5, verlet) or tol "
+        "(adaptive) and shape: table + Pareto plot")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", type=Path, default=Path("results"), help="output folder (default: results)")
-    p.add_argument("--quick", action="store_true", help="a small grid (seconds): 2 shapes, 2 steps each")
+    p.add_argument("--quick", action="store_true", help="a small grid (seconds): 2 shapes, 2 steps or tolerances each")
 
 
 def run(args: argparse.Namespace) -> int:

@@ -9,10 +9,14 @@
 //! <= 1 us per step for the 120-gon. The Hertz-Mindlin sphere (Chung & Ooi's Test 4 at 45 deg,
 //! its own initial state) is measured in the same run; goal (issue 16): within 1.5x the disc.
 //!
+//! The group `impact_overhead` times what every impact pays outside its steps (issue 13: a few
+//! microseconds at most): `Model::new` (validation and the time-step bound) and the estimate of
+//! the largest depth that sizes the step budget, on the disc and the 120-gon.
+//!
 //! `cargo bench -p restitution-core --bench impact`
 
 use criterion::{Criterion, Throughput};
-use restitution_core::{simulate, Initial, Integrator, NormalLaw, Scene, Shape};
+use restitution_core::{estimate_max_depth, simulate, Initial, Integrator, Model, NormalLaw, Scene, Shape};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -77,6 +81,25 @@ fn bench_impacts(c: &mut Criterion) {
     group.finish();
 }
 
+/// The fixed cost of an impact outside its steps, piece by piece.
+fn bench_overhead(c: &mut Criterion) {
+    let mut group = c.benchmark_group("impact_overhead");
+    let p = paper_initial();
+    for (name, scene, _) in configurations().into_iter().filter(|c| c.0.ends_with("gear5")) {
+        let shape = name.trim_end_matches("_gear5");
+        group.bench_function(format!("{shape}_model_new"), |b| {
+            b.iter(|| Model::new(black_box(&scene)).expect("valid"))
+        });
+        if shape != "sphere" {
+            let model = Model::new(&scene).expect("valid");
+            group.bench_function(format!("{shape}_estimate_max_depth"), |b| {
+                b.iter(|| estimate_max_depth(black_box(&model), black_box(&p)).expect("valid"))
+            });
+        }
+    }
+    group.finish();
+}
+
 /// Best-of-batches time per impact, measured outside criterion so that ns per step can be
 /// printed directly. Many short batches (~2 ms): on a shared machine the best of them is the
 /// one least disturbed by other processes.
@@ -135,6 +158,7 @@ fn main() {
         .sample_size(20)
         .configure_from_args();
     bench_impacts(&mut c);
+    bench_overhead(&mut c);
     c.final_summary();
     // `cargo test --benches` and `--list` run the benchmark binary too: skip the timing there.
     let quick = std::env::args().any(|a| a == "--test" || a == "--list");
