@@ -1,0 +1,290 @@
+//! The contact law in a held mode: the overlap and the forces of the piece's formulas,
+//! continued smoothly a little beyond the piece's end, and the time derivative of the state.
+
+use super::mode::{Mode, Tan, Touch};
+use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
+use crate::geometry::Overlap;
+use crate::impact::record::Trace;
+use crate::law::{vertex_springs, Forces, StickState};
+use crate::model::{Model, NormalLaw};
+use nalgebra::Vector2;
+
+/// Everything the force evaluation yields besides the derivative.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Eval {
+    pub(super) forces: Forces,
+    /// F_el + F_d before the clip.
+    pub(super) fn_raw: f64,
+    /// Tangential velocity of the contact point.
+    pub(super) v_t: f64,
+    /// Trial force of a sticking spring, -k_t xi - c_t v_t.
+    pub(super) trial: f64,
+    /// Depth of the lowest point (signed).
+    pub(super) depth: f64,
+}
+
+/// The ODE of one impact: the model, its corners and the error control's settings.
+pub(super) struct Reference<'a> {
+    pub(super) model: &'a Model,
+    pub(super) verts: &'a [Vector2<f64>],
+    pub(super) mu: f64,
+    /// Error scale of each state component (the tolerance multiplies it).
+    pub(super) scale: State,
+    pub(super) tol: f64,
+    /// Time step of the directional finite differences of the slip -> stick test.
+    pub(super) fd_step: f64,
+    /// A pull of the unclipped normal force below -force_tol is a missed clip switch.
+    pub(super) force_tol: f64,
+}
+
+impl<'a> Reference<'a> {
+    pub(super) fn linear(&self) -> Option<(f64, f64)> {
+        match self.model.scene.normal_law {
+            NormalLaw::Linear { kn, cn } => Some((kn, cn)),
+            NormalLaw::Area | NormalLaw::Hertz { .. } => None,
+        }
+    }
+
+    /// World position of corner `k` for centre height `y` and orientation (sin, cos):
+    /// x relative to the centre of mass, y absolute.
+    #[inline]
+    pub(super) fn corner(&self, k: usize, y: f64, sc: (f64, f64)) -> (f64, f64) {
+        let v = &self.verts[k % self.verts.len()];
+        (sc.1 * v.x - sc.0 * v.y, y + sc.0 * v.x + sc.1 * v.y)
+    }
+
+    /// The overlap of a polygon whose submerged corners are held fixed: the crossing points on
+    /// the two boundary edges are placed on y = 0 by linear interpolation even when a held
+    /// corner has just risen above the plate (a smooth continuation of the clip).
+    pub(super) fn held_polygon(
+        &self,
+        first: usize,
+        len: usize,
+        low: usize,
+        y: f64,
+        phi: f64,
+    ) -> Overlap {
+        let n = self.verts.len();
+        let sc = phi.sin_cos();
+        let a = (first + n - 1) % n;
+        let last = (first + len - 1) % n;
+        let b = (last + 1) % n;
+        // Interpolated from the end nearer the plate (slivers keep their precision); an edge
+        // parallel to the plate, possible only in the continuation, takes its midpoint.
+        let crossing = |p: (f64, f64), q: (f64, f64)| {
+            let (near, far) = if p.1.abs() <= q.1.abs() {
+                (p, q)
+            } else {
+                (q, p)
+            };
+            let t = near.1 / (near.1 - far.1);
+            if t.is_finite() {
+                near.0 + t * (far.0 - near.0)
+            } else {
+                0.5 * (p.0 + q.0)
+            }
+        };
+        let p_first = self.corner(first, y, sc);
+        let p_last = self.corner(last, y, sc);
+        let xp = crossing(self.corner(a, y, sc), p_first);
+        let xq = crossing(p_last, self.corner(b, y, sc));
+        // Shoelace over P, corners, Q (relative to P for precision); the chord Q -> P closes it.
+        let (mut area2, mut mx, mut my) = (0.0, 0.0, 0.0);
+        let mut prev = (0.0, 0.0);
+        let mut depth = f64::NEG_INFINITY;
+        for j in 0..=len {
+            let cur = if j < len {
+                let c = self.corner(first + j, y, sc);
+                depth = depth.max(-c.1);
+                (c.0 - xp, c.1)
+            } else {
+                (xq - xp, 0.0)
+            };
+            let w = prev.0 * cur.1 - cur.0 * prev.1;
+            area2 += w;
+            mx += (prev.0 + cur.0) * w;
+            my += (prev.1 + cur.1) * w;
+            prev = cur;
+        }
+        let (cx, cy) = if area2.abs() > 0.0 {
+            (xp + mx / (3.0 * area2), my / (3.0 * area2))
+        } else {
+            (xp, 0.0)
+        };
+        let lowc = self.corner(low, y, sc);
+        let area = 0.5 * area2;
+        Overlap {
+            area,
+            cx,
+            cy,
+            chord: xq - xp,
+            x_mid: 0.5 * (xp + xq),
+            depth,
+            x_low: lowc.0,
+            first_moment: -area * cy,
+            corners: crate::geometry::Corners {
+                first: first as u32,
+                count: len as u32,
+            },
+        }
+    }
+
+    /// Overlap in the held mode; `None` in free flight.
+    pub(super) fn overlap(&self, touch: Touch, y: f64, phi: f64) -> Option<Overlap> {
+        match touch {
+            Touch::Off => None,
+            Touch::Disc => {
+                let r = self.model.r;
+                // Beyond the separation point the segment continues as nothing.
+                Some(self.model.scene.shape.overlap(y, phi).unwrap_or(Overlap {
+                    cy: y - r,
+                    depth: r - y,
+                    ..Overlap::default()
+                }))
+            }
+            Touch::Poly { first, len, low } => Some(self.held_polygon(first, len, low, y, phi)),
+        }
+    }
+
+    /// Forces and the time derivative of the state in mode `m`.
+    pub(super) fn eval(&self, m: &Mode, s: &State) -> (State, Eval) {
+        let model = self.model;
+        let mut d = [0.0; NS];
+        d[X] = s[VX];
+        d[Y] = s[VY];
+        d[PHI] = s[OM];
+        let Some(o) = self.overlap(m.touch, s[Y], s[PHI]) else {
+            let depth = model.scene.shape.touch_height(s[PHI]) - s[Y];
+            return (
+                d,
+                Eval {
+                    depth,
+                    ..Eval::default()
+                },
+            );
+        };
+        let (vy, om) = (s[VY], s[OM]);
+        let (f_el, f_d, x_el, x_damp, depth) = match (self.linear(), model.hertz) {
+            (None, Some(h)) => {
+                // The sphere's Hertz law (section 14); beyond separation it continues as
+                // nothing, like the disc's segment. It acts along the centre line.
+                let delta = (model.r - s[Y]).max(0.0);
+                let q = delta.sqrt();
+                (h.k * delta * q, h.c * q.sqrt() * -vy, 0.0, 0.0, o.depth)
+            }
+            (None, None) => (
+                model.scene.e_modulus * o.area / model.length,
+                model.area_damping * (-o.chord * (vy + om * o.x_mid)),
+                o.cx,
+                o.x_mid,
+                o.depth,
+            ),
+            (Some((kn, cn)), _) => {
+                let (f_el, f_d, x_el, x_damp) = match m.touch {
+                    // One spring-dashpot per held corner, continued smoothly beyond a
+                    // crossing (see `crate::law::vertex_springs`).
+                    Touch::Poly { first, len, .. } => {
+                        let sc = s[PHI].sin_cos();
+                        let held = (first..first + len).map(|k| {
+                            let (x, h) = self.corner(k, s[Y], sc);
+                            (-h, x)
+                        });
+                        vertex_springs(kn, cn, held, &[s[VX], vy, om])
+                    }
+                    // The disc: at its lowest point, r - y below the centre.
+                    _ => {
+                        let delta = self.low_depth(m.touch, s[Y], s[PHI]);
+                        let rate = -(vy + om * o.x_low);
+                        (kn * delta, cn * rate, o.x_low, o.x_low)
+                    }
+                };
+                (f_el, f_d, x_el, x_damp, o.depth)
+            }
+        };
+        let fn_raw = f_el + f_d;
+        let (f_el, f_d) = if m.clip_on { (f_el, f_d) } else { (0.0, 0.0) };
+        let f_n = f_el + f_d;
+        let arm_y = o.cy - s[Y];
+        let v_t = s[VX] - om * arm_y;
+        // (k_t, 1, c_t) for the linear spring; Mindlin's, incremental in the force, (1, k_t, c_t)
+        // at this depth, xi then being minus the elastic force.
+        let (k_xi, rate, ct) = model.spring(o.depth);
+        let trial = -k_xi * s[XI] - ct * v_t;
+        let (f_t, stick) = match m.tan {
+            Tan::None => (0.0, StickState::None),
+            Tan::Free => (0.0, StickState::Slip),
+            Tan::Stick => (trial, StickState::Stick),
+            Tan::Slip(sg) => (self.mu * f_n * sg, StickState::Slip),
+        };
+        let torque = x_el * f_el + x_damp * f_d - arm_y * f_t;
+        d[VX] = f_t / model.mass;
+        d[VY] = f_n / model.mass;
+        d[OM] = torque / model.inertia;
+        d[XI] = if m.tan == Tan::Stick { rate * v_t } else { 0.0 };
+        d[W_EL] = f_el * (vy + om * x_el);
+        d[W_D] = f_d * (vy + om * x_damp);
+        d[W_T] = f_t * v_t;
+        let forces = Forces {
+            fx: f_t,
+            fy: f_n,
+            torque,
+            f_el,
+            f_d,
+            f_t,
+            overlap: Some(o),
+            stick,
+            x_el,
+            x_damp,
+        };
+        (
+            d,
+            Eval {
+                forces,
+                fn_raw,
+                v_t,
+                trial,
+                depth,
+            },
+        )
+    }
+
+    /// Depth of the held lowest corner of a polygon (linear law).
+    pub(super) fn low_depth(&self, touch: Touch, y: f64, phi: f64) -> f64 {
+        match touch {
+            Touch::Poly { low, .. } => -self.corner(low, y, phi.sin_cos()).1,
+            Touch::Disc => self.model.r - y,
+            Touch::Off => 0.0,
+        }
+    }
+
+    /// The spring elongation the law implies: integrated while sticking, algebraic otherwise.
+    pub(super) fn xi_of(&self, m: &Mode, s: &State, e: &Eval) -> f64 {
+        let (kt, _, ct) = self.model.spring(e.depth);
+        match m.tan {
+            Tan::Stick => s[XI],
+            Tan::Slip(_) => -(e.forces.f_t + ct * e.v_t) / kt,
+            Tan::Free => -ct * e.v_t / kt,
+            Tan::None => 0.0,
+        }
+    }
+}
+
+pub(super) fn kinetic_energy(model: &Model, s: &State) -> f64 {
+    0.5 * model.mass * (s[VX] * s[VX] + s[VY] * s[VY]) + 0.5 * model.inertia * s[OM] * s[OM]
+}
+
+pub(super) fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
+    tr.t.push(t);
+    tr.x.push(s[X]);
+    tr.y.push(s[Y]);
+    tr.phi.push(s[PHI]);
+    tr.vx.push(s[VX]);
+    tr.vy.push(s[VY]);
+    tr.omega.push(s[OM]);
+    tr.f_n.push(e.forces.f_el + e.forces.f_d);
+    tr.f_t.push(e.forces.f_t);
+    tr.area.push(e.forces.overlap.map_or(0.0, |o| o.area));
+    tr.depth.push(e.depth);
+    tr.stick.push(e.forces.stick.code());
+    tr.xi.push(xi);
+}
