@@ -460,6 +460,13 @@ fn check_laws(scene: &Scene) -> Result<()> {
 }
 
 impl Model {
+    /// Kinetic energy (translation and rotation) at velocity `v` = (vx, vy, omega): J/m, J
+    /// for a sphere.
+    #[inline]
+    pub fn kinetic_energy(&self, v: &[f64; 3]) -> f64 {
+        0.5 * self.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * self.inertia * v[2] * v[2]
+    }
+
     /// Validates the scene and derives the constants; refuses a `dt_factor` above the scene's
     /// stability bound ([`Model::max_dt_factor`]).
     pub fn new(scene: &Scene) -> Result<Self> {

@@ -4,8 +4,7 @@
 use super::mode::{Mode, Tan, Touch};
 use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Overlap;
-use crate::impact::record::Trace;
-use crate::law::{vertex_springs, Forces, StickState};
+use crate::law::{carrying, trial_force, vertex_springs, Forces, NormalForce, StickState};
 use crate::model::{Model, NormalLaw};
 use nalgebra::Vector2;
 
@@ -35,6 +34,8 @@ pub(super) struct Reference<'a> {
     pub(super) fd_step: f64,
     /// A pull of the unclipped normal force below -force_tol is a missed clip switch.
     pub(super) force_tol: f64,
+    /// The normal law's force on an overlap (the fixed-step path's).
+    pub(super) normal: NormalForce,
 }
 
 impl<'a> Reference<'a> {
@@ -146,7 +147,9 @@ impl<'a> Reference<'a> {
         }
     }
 
-    /// Forces and the time derivative of the state in mode `m`.
+    /// Forces and the time derivative of the state in mode `m`: the law's own functions
+    /// ([`NormalForce`], [`vertex_springs`], [`trial_force`], [`Forces::on_overlap`]) on the
+    /// held overlap, with the clip and the tangential law that the mode holds.
     pub(super) fn eval(&self, m: &Mode, s: &State) -> (State, Eval) {
         let model = self.model;
         let mut d = [0.0; NS];
@@ -163,98 +166,49 @@ impl<'a> Reference<'a> {
                 },
             );
         };
-        let (vy, om) = (s[VY], s[OM]);
-        let (f_el, f_d, x_el, x_damp, depth) = match (self.linear(), model.hertz) {
-            (None, Some(h)) => {
-                // The sphere's Hertz law (section 14); beyond separation it continues as
-                // nothing, like the disc's segment. It acts along the centre line.
-                let delta = (model.r - s[Y]).max(0.0);
-                let q = delta.sqrt();
-                (h.k * delta * q, h.c * q.sqrt() * -vy, 0.0, 0.0, o.depth)
+        let v = [s[VX], s[VY], s[OM]];
+        let (f_el, f_d, x_el, x_damp) = match (self.linear(), m.touch) {
+            // One spring-dashpot per held corner, continued smoothly beyond a crossing.
+            (Some((kn, cn)), Touch::Poly { first, len, .. }) => {
+                let sc = s[PHI].sin_cos();
+                let held = (first..first + len).map(|k| {
+                    let (x, h) = self.corner(k, s[Y], sc);
+                    (-h, x)
+                });
+                vertex_springs(kn, cn, held, &v)
             }
-            (None, None) => (
-                model.scene.e_modulus * o.area / model.length,
-                model.area_damping * (-o.chord * (vy + om * o.x_mid)),
-                o.cx,
-                o.x_mid,
-                o.depth,
-            ),
-            (Some((kn, cn)), _) => {
-                let (f_el, f_d, x_el, x_damp) = match m.touch {
-                    // One spring-dashpot per held corner, continued smoothly beyond a
-                    // crossing (see `crate::law::vertex_springs`).
-                    Touch::Poly { first, len, .. } => {
-                        let sc = s[PHI].sin_cos();
-                        let held = (first..first + len).map(|k| {
-                            let (x, h) = self.corner(k, s[Y], sc);
-                            (-h, x)
-                        });
-                        vertex_springs(kn, cn, held, &[s[VX], vy, om])
-                    }
-                    // The disc: at its lowest point, r - y below the centre.
-                    _ => {
-                        let delta = self.low_depth(m.touch, s[Y], s[PHI]);
-                        let rate = -(vy + om * o.x_low);
-                        (kn * delta, cn * rate, o.x_low, o.x_low)
-                    }
-                };
-                (f_el, f_d, x_el, x_damp, o.depth)
-            }
+            // The area law, the disc's lowest point, the sphere's Hertz law: beyond
+            // separation the disc's or sphere's contact continues as nothing.
+            _ => self.normal.on_overlap(&o, &v),
         };
         let fn_raw = f_el + f_d;
         let (f_el, f_d) = if m.clip_on { (f_el, f_d) } else { (0.0, 0.0) };
         let f_n = f_el + f_d;
-        let arm_y = o.cy - s[Y];
-        let v_t = s[VX] - om * arm_y;
+        let v_t = s[VX] - s[OM] * (o.cy - s[Y]);
         // (k_t, 1, c_t) for the linear spring; Mindlin's, incremental in the force, (1, k_t, c_t)
         // at this depth, xi then being minus the elastic force.
         let (k_xi, rate, ct) = model.spring(o.depth);
-        let trial = -k_xi * s[XI] - ct * v_t;
+        let trial = trial_force(k_xi, s[XI], ct, v_t);
         let (f_t, stick) = match m.tan {
             Tan::None => (0.0, StickState::None),
             Tan::Free => (0.0, StickState::Slip),
             Tan::Stick => (trial, StickState::Stick),
             Tan::Slip(sg) => (self.mu * f_n * sg, StickState::Slip),
         };
-        let torque = x_el * f_el + x_damp * f_d - arm_y * f_t;
+        let forces = Forces::on_overlap(o, s[Y], f_n, (f_el, f_d, x_el, x_damp), f_t, stick);
         d[VX] = f_t / model.mass;
         d[VY] = f_n / model.mass;
-        d[OM] = torque / model.inertia;
+        d[OM] = forces.torque / model.inertia;
         d[XI] = if m.tan == Tan::Stick { rate * v_t } else { 0.0 };
-        d[W_EL] = f_el * (vy + om * x_el);
-        d[W_D] = f_d * (vy + om * x_damp);
-        d[W_T] = f_t * v_t;
-        let forces = Forces {
-            fx: f_t,
-            fy: f_n,
-            torque,
-            f_el,
-            f_d,
-            f_t,
-            overlap: Some(o),
-            stick,
-            x_el,
-            x_damp,
+        (d[W_EL], d[W_D], d[W_T]) = forces.powers(s[Y], &v);
+        let e = Eval {
+            forces,
+            fn_raw,
+            v_t,
+            trial,
+            depth: o.depth,
         };
-        (
-            d,
-            Eval {
-                forces,
-                fn_raw,
-                v_t,
-                trial,
-                depth,
-            },
-        )
-    }
-
-    /// Depth of the held lowest corner of a polygon (linear law).
-    pub(super) fn low_depth(&self, touch: Touch, y: f64, phi: f64) -> f64 {
-        match touch {
-            Touch::Poly { low, .. } => -self.corner(low, y, phi.sin_cos()).1,
-            Touch::Disc => self.model.r - y,
-            Touch::Off => 0.0,
-        }
+        (d, e)
     }
 
     /// The spring elongation the law implies: integrated while sticking, algebraic otherwise.
@@ -262,29 +216,9 @@ impl<'a> Reference<'a> {
         let (kt, _, ct) = self.model.spring(e.depth);
         match m.tan {
             Tan::Stick => s[XI],
-            Tan::Slip(_) => -(e.forces.f_t + ct * e.v_t) / kt,
-            Tan::Free => -ct * e.v_t / kt,
+            Tan::Slip(_) => carrying(e.forces.f_t, kt, ct, e.v_t),
+            Tan::Free => carrying(0.0, kt, ct, e.v_t),
             Tan::None => 0.0,
         }
     }
-}
-
-pub(super) fn kinetic_energy(model: &Model, s: &State) -> f64 {
-    0.5 * model.mass * (s[VX] * s[VX] + s[VY] * s[VY]) + 0.5 * model.inertia * s[OM] * s[OM]
-}
-
-pub(super) fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
-    tr.t.push(t);
-    tr.x.push(s[X]);
-    tr.y.push(s[Y]);
-    tr.phi.push(s[PHI]);
-    tr.vx.push(s[VX]);
-    tr.vy.push(s[VY]);
-    tr.omega.push(s[OM]);
-    tr.f_n.push(e.forces.f_el + e.forces.f_d);
-    tr.f_t.push(e.forces.f_t);
-    tr.area.push(e.forces.overlap.map_or(0.0, |o| o.area));
-    tr.depth.push(e.depth);
-    tr.stick.push(e.forces.stick.code());
-    tr.xi.push(xi);
 }

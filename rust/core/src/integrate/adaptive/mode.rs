@@ -3,10 +3,11 @@
 //! the state it implies).
 
 use super::events::Event;
-use super::law::Reference;
+use super::law::{Eval, Reference};
 use super::run::Tally;
 use super::{State, PHI, XI, Y};
 use crate::geometry::Shape;
+use crate::law::carrying;
 
 /// Which overlap formula holds in a piece.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -136,7 +137,7 @@ pub(super) fn apply(
             m.clip_on = false;
             if ode.mu > 0.0 {
                 m.tan = Tan::Free;
-                s[XI] = -ct * e.v_t / kt;
+                s[XI] = carrying(0.0, kt, ct, e.v_t);
             }
         }
         Event::ClipOn => {
@@ -144,23 +145,30 @@ pub(super) fn apply(
             m.tan = ode.initial_tan(m, s);
         }
         Event::ToSlip => {
-            let sg = if e.trial != 0.0 {
-                e.trial.signum()
-            } else {
-                -e.v_t.signum()
-            };
-            m.tan = Tan::Slip(sg);
-            s[XI] = -(ode.mu * e.forces.fy * sg + ct * e.v_t) / kt;
+            start_slip(ode, m, s, &e);
             if tally.stuck {
                 tally.slip_events += 1;
             }
         }
         Event::ToStick => {
             // The spring takes over the force it carried while slipping.
-            s[XI] = -(e.forces.f_t + ct * e.v_t) / kt;
+            s[XI] = carrying(e.forces.f_t, kt, ct, e.v_t);
             m.tan = Tan::Stick;
         }
     }
+}
+
+/// Slip in the direction of the trial force (against the slip velocity where it is zero);
+/// the spring follows algebraically. `e` is the evaluation at `s` in the stick mode.
+pub(super) fn start_slip(ode: &Reference, m: &mut Mode, s: &mut State, e: &Eval) {
+    let (kt, _, ct) = ode.model.spring(e.depth);
+    let sg = if e.trial != 0.0 {
+        e.trial.signum()
+    } else {
+        -e.v_t.signum()
+    };
+    m.tan = Tan::Slip(sg);
+    s[XI] = carrying(ode.mu * e.forces.fy * sg, kt, ct, e.v_t);
 }
 
 fn separate(m: &mut Mode, s: &mut State, t: f64, tally: &mut Tally) {

@@ -3,8 +3,8 @@
 
 use super::dopri::Step;
 use super::events::Event;
-use super::law::{kinetic_energy, push, Reference};
-use super::mode::{apply, Mode, Tan, Touch};
+use super::law::{Eval, Reference};
+use super::mode::{apply, start_slip, Mode, Tan, Touch};
 use super::{
     ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
 };
@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::law::NormalForce;
 use crate::model::{Initial, Model};
 use std::f64::consts::PI;
 
@@ -477,14 +478,7 @@ impl<'a, 't> Run<'a, 't> {
             // (a Filippov sliding mode), whose force law is slip's. Take one step in slip.
             if mode.tan == Tan::Stick {
                 let e = self.ode.eval(mode, s).1;
-                let sg = if e.trial != 0.0 {
-                    e.trial.signum()
-                } else {
-                    -e.v_t.signum()
-                };
-                mode.tan = Tan::Slip(sg);
-                let (kt, _, ct) = self.ode.model.spring(e.depth);
-                s[XI] = -(self.ode.mu * e.forces.fy * sg + ct * e.v_t) / kt;
+                start_slip(&self.ode, mode, s, &e);
             }
             self.hold_tangential = true;
             self.chatter_t = 0;
@@ -515,44 +509,34 @@ impl<'a, 't> Run<'a, 't> {
     /// The record of the impact, ended for `stop`.
     fn finish(mut self, stop: StopReason) -> Record {
         let (model, init, s) = (self.ode.model, self.init, &self.s);
-        let r = model.r;
         if self.mode.touch != Touch::Off {
             self.tally.contact_time += self.t - self.tally.contact_start;
         }
         let tally = &self.tally;
-        let energy_in = self.lim.energy_in;
-        let energy_out = kinetic_energy(model, s);
-        let work_normal = s[W_EL] + s[W_D];
-        let work_friction = s[W_T];
-        let (vx, vy, om) = (s[VX], s[VY], s[OM]);
-        let v_cp = init.vx + r * init.omega;
-        Record {
-            e_n: -vy / init.vy,
-            e_t: (init.vx != 0.0).then(|| vx / init.vx),
-            e_kin: vx.hypot(vy) / init.vx.hypot(init.vy),
-            omega_out: om,
-            beta: (v_cp != 0.0).then(|| -(vx + r * om) / v_cp),
-            rebound_angle_deg: vy.atan2(vx).to_degrees(),
-            vx_out: vx,
-            vy_out: vy,
+        let mut rec = Record {
             contact_time: tally.contact_time,
             steps: self.steps,
             contacts: tally.contacts,
             max_depth: tally.max_depth,
             max_area: tally.max_area,
             slip_events: tally.slip_events,
-            energy_in,
-            energy_out,
-            work_normal,
-            work_friction,
-            energy_residual: (energy_out - energy_in - work_normal - work_friction) / energy_in,
-            separated: stop == StopReason::Separated,
-            timed_out: stop != StopReason::Separated,
+            energy_in: self.lim.energy_in,
+            work_normal: s[W_EL] + s[W_D],
+            work_friction: s[W_T],
             step_budget: self.lim.max_steps,
             stop,
-            err_est: Some(error_estimate(&self.err_acc, init, r)),
-        }
+            err_est: Some(error_estimate(&self.err_acc, init, model.r)),
+            ..Record::default()
+        };
+        rec.close(model, init, &[s[VX], s[VY], s[OM]]);
+        rec
     }
+}
+
+/// Appends the state `s` at time `t` to the trace.
+fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
+    let (q, v) = ([s[X], s[Y], s[PHI]], [s[VX], s[VY], s[OM]]);
+    tr.push(t, &q, &v, &e.forces, e.depth, xi);
 }
 
 impl<'a> Reference<'a> {
@@ -567,8 +551,7 @@ impl<'a> Reference<'a> {
         let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
         let t_est = PI * depth_est / init.vy.abs();
         let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
-        let energy_in = 0.5 * model.mass * (init.vx * init.vx + init.vy * init.vy)
-            + 0.5 * model.inertia * init.omega * init.omega;
+        let energy_in = model.kinetic_energy(&[init.vx, init.vy, init.omega]);
         let scale = error_scales(model, init, speed, t_est, energy_in);
         let verts = model.scene.shape.vertices();
         let ode = Reference {
@@ -579,6 +562,7 @@ impl<'a> Reference<'a> {
             tol: opts.tol,
             fd_step: 1e-5 * t_est,
             force_tol: opts.tol * model.mass * speed / t_est,
+            normal: NormalForce::new(model),
         };
         let lim = Limits {
             h_max,
