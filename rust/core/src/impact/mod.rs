@@ -1,4 +1,8 @@
 //! One impact, from first touch to separation: the record (docs/model.md, section 9) and an optional trace.
+//!
+//! The dependencies run one way: this dispatch calls the adaptive path
+//! ([`crate::integrate::adaptive`]), which uses only the leaves [`record`] and [`budget`]
+//! (themselves free of both), never this file.
 
 use crate::cancel::Cancel;
 use crate::error::Result;

@@ -40,6 +40,7 @@ mod run;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::impact::record::{estimate_max_depth, Record, Trace};
+use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use run::integrate;
@@ -55,10 +56,7 @@ pub struct ReferenceOptions {
     pub max_step_factor: Option<f64>,
 }
 
-/// The local tolerance per unit of the target error `Scene::tol` of the adaptive integrator:
-/// global errors of the four outputs come out below the accumulated local errors, measured
-/// over the accuracy grid (`tests/adaptive.rs`).
-pub const LOCAL_TOL_PER_TARGET: f64 = 0.05;
+pub use crate::model::scene::LOCAL_TOL_PER_TARGET;
 
 /// Factor on the accumulated local error estimates that makes `err_est` (calibrated over the
 /// accuracy grid, `tests/adaptive.rs`).
@@ -68,12 +66,9 @@ impl ReferenceOptions {
     /// The settings a scene asks for: the reference's for `Integrator::Reference`, the scene's
     /// tolerance for `Integrator::Adaptive`; the largest step is the scene's `dt_factor`.
     pub fn for_scene(scene: &Scene) -> Self {
-        match scene.integrator {
-            Integrator::Adaptive => ReferenceOptions {
-                tol: scene.tol * LOCAL_TOL_PER_TARGET,
-                max_step_factor: None,
-            },
-            _ => ReferenceOptions::default(),
+        ReferenceOptions {
+            tol: scene.local_tol(),
+            max_step_factor: None,
         }
     }
 }
@@ -81,7 +76,7 @@ impl ReferenceOptions {
 impl Default for ReferenceOptions {
     fn default() -> Self {
         ReferenceOptions {
-            tol: 1e-12,
+            tol: REFERENCE_LOCAL_TOL,
             max_step_factor: None,
         }
     }

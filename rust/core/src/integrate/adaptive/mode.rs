@@ -42,7 +42,8 @@ pub(super) enum Tan {
 pub(super) struct Mode {
     pub(super) touch: Touch,
     pub(super) clip_on: bool,
-    /// The clip held off for one step, its events ignored, where it chatters (see `Run::resolve_chatter`).
+    /// The clip held off for one step, its events ignored, where it chatters (see
+    /// `Run::resolve_chatter`).
     pub(super) clip_hold: bool,
     pub(super) tan: Tan,
 }
