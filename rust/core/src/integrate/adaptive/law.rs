@@ -3,6 +3,7 @@
 
 use super::mode::{Mode, Tan, Touch};
 use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
+use crate::geometry::shape::crossing_x;
 use crate::geometry::Overlap;
 use crate::law::{carrying, trial_force, vertex_springs, Forces, NormalForce, StickState};
 use crate::model::{Model, NormalLaw};
@@ -70,17 +71,13 @@ impl<'a> Reference<'a> {
         let a = (first + n - 1) % n;
         let last = (first + len - 1) % n;
         let b = (last + 1) % n;
-        // Interpolated from the end nearer the plate (slivers keep their precision); an edge
-        // parallel to the plate, possible only in the continuation, takes its midpoint.
+        // The geometry's crossing (interpolated from the end nearer the plate, so slivers
+        // keep their precision); an edge parallel to the plate, possible only in the
+        // continuation, takes its midpoint.
         let crossing = |p: (f64, f64), q: (f64, f64)| {
-            let (near, far) = if p.1.abs() <= q.1.abs() {
-                (p, q)
-            } else {
-                (q, p)
-            };
-            let t = near.1 / (near.1 - far.1);
-            if t.is_finite() {
-                near.0 + t * (far.0 - near.0)
+            let x = crossing_x(p, q);
+            if x.is_finite() {
+                x
             } else {
                 0.5 * (p.0 + q.0)
             }
