@@ -41,7 +41,7 @@ pub const BUDGET_SLACK_STEPS: u64 = 10_000;
 pub fn contact_steps(model: &Model, init: &Initial, depth_est: f64) -> f64 {
     match model.scene.integrator {
         Integrator::Reference | Integrator::Adaptive => {
-            let tol = crate::integrate::adaptive::ReferenceOptions::for_scene(&model.scene).tol;
+            let tol = model.scene.local_tol();
             reference_contact_steps(model, init, depth_est, model.dt, tol)
         }
         _ => PI * depth_est / init.vy.abs() / model.dt,

@@ -1,4 +1,8 @@
 //! One impact, from first touch to separation: the record (docs/model.md, section 9) and an optional trace.
+//!
+//! The dependencies run one way: this dispatch calls the adaptive path
+//! ([`crate::integrate::adaptive`]), which uses only the leaves [`record`] and [`budget`]
+//! (themselves free of both), never this file.
 
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -263,10 +267,6 @@ impl Work {
     }
 }
 
-fn kinetic_energy(model: &Model, v: &Dof) -> f64 {
-    0.5 * model.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * model.inertia * v[2] * v[2]
-}
-
 /// Integrates one impact with `stepper`, the loop compiled separately for the exact disc and
 /// for other shapes (see [`PlateGeometry`]).
 fn integrate<S: Stepper>(
@@ -354,7 +354,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         cancel: &Cancel,
     ) -> Result<Record> {
         let v_in = self.stepper.velocity();
-        self.rec.energy_in = kinetic_energy(self.model, &v_in);
+        self.rec.energy_in = self.model.kinetic_energy(&v_in);
         if self.events {
             self.start_events();
         }
@@ -550,20 +550,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         // work).
         rec.work_normal = self.w_n.total;
         rec.work_friction = self.w_t.total;
-        rec.energy_out = kinetic_energy(model, &v);
-        rec.energy_residual =
-            (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in;
-        rec.vx_out = v[0];
-        rec.vy_out = v[1];
-        rec.omega_out = v[2];
-        rec.e_n = -v[1] / init.vy;
-        rec.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
-        rec.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
-        let v_cp = init.vx + model.r * init.omega;
-        rec.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
-        rec.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
-        rec.timed_out = rec.stop != StopReason::Separated;
-        rec.separated = !rec.timed_out;
+        rec.close(model, init, &v);
         rec
     }
 }

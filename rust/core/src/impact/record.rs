@@ -112,6 +112,28 @@ pub struct Record {
 }
 
 impl Record {
+    /// Completes the record of an impact from `init` that ended with velocity `v` = (vx, vy,
+    /// omega): the restitution coefficients and the rest of the outputs, the energy after it
+    /// and the balance's residual (`energy_in`, `work_normal`, `work_friction` and `stop`
+    /// already set). Every integrator ends here, so the outputs have one definition.
+    pub(crate) fn close(&mut self, model: &Model, init: &Initial, v: &Dof) {
+        self.energy_out = model.kinetic_energy(v);
+        self.energy_residual =
+            (self.energy_out - self.energy_in - self.work_normal - self.work_friction)
+                / self.energy_in;
+        self.vx_out = v[0];
+        self.vy_out = v[1];
+        self.omega_out = v[2];
+        self.e_n = -v[1] / init.vy;
+        self.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
+        self.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
+        let v_cp = init.vx + model.r * init.omega;
+        self.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
+        self.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
+        self.timed_out = self.stop != StopReason::Separated;
+        self.separated = !self.timed_out;
+    }
+
     /// The four outputs whose error `err_est` bounds: e_N, e_T (0 when undefined), e_kin and
     /// omega_out r / v, v the impact speed `speed`.
     pub fn accuracy_outputs(&self, r: f64, speed: f64) -> [f64; 4] {

@@ -35,6 +35,36 @@ pub struct Forces {
 }
 
 impl Forces {
+    /// The forces on a body at centre height `y` from an overlap `o`: the normal force `f_n`
+    /// = F_el + F_d with its parts `normal` = (F_el, F_d, x_el, x_damp) (after the clip; the
+    /// sum passed in, not re-added: the fixed-step path selects it from the unclipped sum)
+    /// and the tangential force `f_t`, acting at the overlap's centroid height; the torque
+    /// about the centre of mass follows from where each acts.
+    #[inline(always)]
+    pub fn on_overlap(
+        o: Overlap,
+        y: f64,
+        f_n: f64,
+        normal: (f64, f64, f64, f64),
+        f_t: f64,
+        stick: StickState,
+    ) -> Forces {
+        let (f_el, f_d, x_el, x_damp) = normal;
+        let arm_y = o.cy - y;
+        Forces {
+            fx: f_t,
+            fy: f_n,
+            torque: x_el * f_el + x_damp * f_d - arm_y * f_t,
+            f_el,
+            f_d,
+            f_t,
+            overlap: Some(o),
+            stick,
+            x_el,
+            x_damp,
+        }
+    }
+
     /// Power of the normal force (elastic, damping) and of the tangential force for the body
     /// velocity `v` at centre height `y`: F . (v + omega x arm).
     #[inline]
@@ -75,6 +105,74 @@ pub trait PlateGeometry: Clone {
     /// x of corner `k` relative to the centre of mass, at orientation `phi`.
     fn corner_x(&self, _k: usize, _phi: f64) -> f64 {
         f64::NAN
+    }
+}
+
+/// The normal law's force on an overlap, with its constants derived once per impact: the one
+/// formula of each law that every integrator evaluates (a polygon under the linear law takes
+/// [`vertex_springs`] instead).
+#[derive(Debug, Clone, Copy)]
+pub struct NormalForce {
+    law: NormalLaw,
+    /// E / L of the area law, so that the elastic force is one product per step.
+    e_over_l: f64,
+    /// gamma sqrt(m E) / L of the area law.
+    area_damping: f64,
+    /// The Hertz law's constants (zero for the other laws).
+    hertz: Hertz,
+}
+
+impl NormalForce {
+    /// The normal law of `model`.
+    pub fn new(model: &Model) -> Self {
+        NormalForce {
+            law: model.scene.normal_law,
+            e_over_l: model.scene.e_modulus / model.length,
+            area_damping: model.area_damping,
+            hertz: model.hertz.unwrap_or(Hertz {
+                e_star: 0.0,
+                g_star: 0.0,
+                beta: 0.0,
+                k: 0.0,
+                c: 0.0,
+                kt: 0.0,
+                ct: 0.0,
+            }),
+        }
+    }
+
+    /// (F_el, F_d, x_el, x_damp) before the clip for the overlap `o` and the body velocity
+    /// `v`: the area law on the overlap's area and chord, the linear law at the lowest point
+    /// (a disc or sphere), the Hertz law at the depth (none above the plate, where the
+    /// adaptive path continues a sphere's contact as nothing).
+    #[inline(always)]
+    pub fn on_overlap(&self, o: &Overlap, v: &Dof) -> (f64, f64, f64, f64) {
+        match self.law {
+            NormalLaw::Area => {
+                // Exact rate of the overlap area: minus the chord times the normal velocity
+                // of the body at the chord's midpoint (the body velocity is linear along it).
+                let da_dt = -o.chord * (v[1] + v[2] * o.x_mid);
+                (
+                    o.area * self.e_over_l,
+                    self.area_damping * da_dt,
+                    o.cx,
+                    o.x_mid,
+                )
+            }
+            NormalLaw::Linear { kn, cn } => {
+                // One spring-dashpot at the lowest point.
+                let ddepth_dt = -(v[1] + v[2] * o.x_low);
+                (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
+            }
+            NormalLaw::Hertz { .. } => {
+                // 4/3 E* sqrt(R) delta^(3/2) and the Tsuji dashpot ~ delta^(1/4) (section 14),
+                // acting along the centre line.
+                let h = &self.hertz;
+                let delta = o.depth.max(0.0);
+                let s = delta.sqrt();
+                (h.k * delta * s, h.c * s.sqrt() * -v[1], 0.0, 0.0)
+            }
+        }
     }
 }
 
@@ -205,12 +303,10 @@ pub struct Contact<'a, G> {
     model: &'a Model,
     /// How the overlap is found.
     pub geometry: G,
-    /// E / L of the area law, so that the elastic force is one product per step.
-    e_over_l: f64,
     /// The Cundall-Strack spring.
     pub spring: TangentialSpring,
-    /// The Hertz law's constants (zero for the other laws).
-    hertz: Hertz,
+    /// The normal law.
+    normal: NormalForce,
 }
 
 impl<'a, G: PlateGeometry> Contact<'a, G> {
@@ -219,17 +315,8 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         Contact {
             model,
             geometry,
-            e_over_l: model.scene.e_modulus / model.length,
             spring: TangentialSpring::default(),
-            hertz: model.hertz.unwrap_or(Hertz {
-                e_star: 0.0,
-                g_star: 0.0,
-                beta: 0.0,
-                k: 0.0,
-                c: 0.0,
-                kt: 0.0,
-                ct: 0.0,
-            }),
+            normal: NormalForce::new(model),
         }
     }
 
@@ -242,17 +329,6 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
             return Forces::default();
         };
         let (f_el, f_d, x_el, x_damp) = match m.scene.normal_law {
-            NormalLaw::Area => {
-                // Exact rate of the overlap area: minus the chord times the normal velocity
-                // of the body at the chord's midpoint (the body velocity is linear along it).
-                let da_dt = -o.chord * (v[1] + v[2] * o.x_mid);
-                (
-                    o.area * self.e_over_l,
-                    m.area_damping * da_dt,
-                    o.cx,
-                    o.x_mid,
-                )
-            }
             NormalLaw::Linear { kn, cn } if G::EVENTS => {
                 // A polygon: one spring-dashpot per submerged corner (see `vertex_springs`).
                 let g = &self.geometry;
@@ -262,17 +338,8 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
                 });
                 vertex_springs(kn, cn, below, v)
             }
-            NormalLaw::Linear { kn, cn } => {
-                // The disc: one spring-dashpot at its lowest point, below the centre.
-                let ddepth_dt = -(v[1] + v[2] * o.x_low);
-                (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
-            }
-            NormalLaw::Hertz { .. } => {
-                // 4/3 E* sqrt(R) delta^(3/2) and the Tsuji dashpot ~ delta^(1/4) (section 14).
-                let h = &self.hertz;
-                let s = o.depth.sqrt();
-                (h.k * o.depth * s, h.c * s.sqrt() * -v[1], 0.0, 0.0)
-            }
+            // The disc or sphere (its lowest point below the centre), and the area law.
+            _ => self.normal.on_overlap(&o, v),
         };
         // The plate never pulls. (f_n is selected from the sum rather than re-added after the
         // clip: the same value, one addition less on the step's critical path.)
@@ -291,17 +358,6 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         } else {
             self.spring.step(v_t, dt, m.scene.mu, f_n, m.kt, m.ct)
         };
-        Forces {
-            fx: f_t,
-            fy: f_n,
-            torque: x_el * f_el + x_damp * f_d - arm_y * f_t,
-            f_el,
-            f_d,
-            f_t,
-            overlap: Some(o),
-            stick,
-            x_el,
-            x_damp,
-        }
+        Forces::on_overlap(o, q[1], f_n, (f_el, f_d, x_el, x_damp), f_t, stick)
     }
 }

@@ -6,4 +6,4 @@ pub mod contact;
 pub mod tangential;
 
 pub use contact::*;
-pub use tangential::{StickState, TangentialSpring};
+pub use tangential::{carrying, trial_force, StickState, TangentialSpring};

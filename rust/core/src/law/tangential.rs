@@ -23,6 +23,20 @@ impl StickState {
     }
 }
 
+/// The force of a sticking spring of stiffness `kt` at elongation `xi` with its damper:
+/// -k_t xi - c_t v_t (the trial force that Coulomb's cap tests).
+#[inline(always)]
+pub fn trial_force(kt: f64, xi: f64, ct: f64, v_t: f64) -> f64 {
+    -kt * xi - ct * v_t
+}
+
+/// The elongation at which the spring, with its damper, carries the force `f_t`:
+/// xi = -(F_t + c_t v_t) / k_t (a capped spring, and the slip -> stick handover).
+#[inline(always)]
+pub fn carrying(f_t: f64, kt: f64, ct: f64, v_t: f64) -> f64 {
+    -(f_t + ct * v_t) / kt
+}
+
 /// The history-dependent tangential spring.
 #[derive(Debug, Clone, Default)]
 pub struct TangentialSpring {
@@ -72,11 +86,11 @@ impl TangentialSpring {
             return (0.0, StickState::None);
         }
         self.xi += rate * v_t * dt;
-        let trial = -kt * self.xi - ct * v_t;
+        let trial = trial_force(kt, self.xi, ct, v_t);
         let cap = mu * fn_;
         let (f, state) = if trial.abs() > cap {
             let f = cap.copysign(trial);
-            self.xi = -(f + ct * v_t) / kt;
+            self.xi = carrying(f, kt, ct, v_t);
             (f, StickState::Slip)
         } else {
             (trial, StickState::Stick)

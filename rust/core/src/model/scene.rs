@@ -234,6 +234,28 @@ pub struct Scene {
     pub error_estimate: bool,
 }
 
+/// The local tolerance per unit of the target error `Scene::tol` of the adaptive integrator:
+/// global errors of the four outputs come out below the accumulated local errors, measured
+/// over the accuracy grid (`tests/adaptive.rs`).
+pub const LOCAL_TOL_PER_TARGET: f64 = 0.05;
+
+/// The reference integrator's local tolerance per step: global errors come out at about
+/// 20 times it.
+pub const REFERENCE_LOCAL_TOL: f64 = 1e-12;
+
+impl Scene {
+    /// The local error tolerance per step of the adaptive path for this scene: the
+    /// reference's for `Integrator::Reference`, the scene's target `tol` scaled for
+    /// `Integrator::Adaptive`. (Here rather than in the adaptive path so that the step budget
+    /// in `impact` can read it without depending on that path.)
+    pub(crate) fn local_tol(&self) -> f64 {
+        match self.integrator {
+            Integrator::Adaptive => self.tol * LOCAL_TOL_PER_TARGET,
+            _ => REFERENCE_LOCAL_TOL,
+        }
+    }
+}
+
 impl Default for Scene {
     fn default() -> Self {
         Scene {
@@ -460,6 +482,13 @@ fn check_laws(scene: &Scene) -> Result<()> {
 }
 
 impl Model {
+    /// Kinetic energy (translation and rotation) at velocity `v` = (vx, vy, omega): J/m, J
+    /// for a sphere.
+    #[inline]
+    pub fn kinetic_energy(&self, v: &[f64; 3]) -> f64 {
+        0.5 * self.mass * (v[0] * v[0] + v[1] * v[1]) + 0.5 * self.inertia * v[2] * v[2]
+    }
+
     /// Validates the scene and derives the constants; refuses a `dt_factor` above the scene's
     /// stability bound ([`Model::max_dt_factor`]).
     pub fn new(scene: &Scene) -> Result<Self> {

@@ -1,0 +1,139 @@
+//! The Dormand-Prince 5(4) step with its embedded error estimate and its dense output.
+
+use super::law::Reference;
+use super::mode::{Mode, Tan};
+use super::{State, NS, XI};
+
+// Dormand-Prince 5(4) tableau (Dormand & Prince 1980; dense output of Hairer, Norsett & Wanner)
+
+// The forces do not depend on time explicitly, so the nodes c_i are not needed.
+const A: [[f64; 6]; 7] = [
+    [0.0; 6],
+    [1.0 / 5.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
+    [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
+    [
+        19372.0 / 6561.0,
+        -25360.0 / 2187.0,
+        64448.0 / 6561.0,
+        -212.0 / 729.0,
+        0.0,
+        0.0,
+    ],
+    [
+        9017.0 / 3168.0,
+        -355.0 / 33.0,
+        46732.0 / 5247.0,
+        49.0 / 176.0,
+        -5103.0 / 18656.0,
+        0.0,
+    ],
+    [
+        35.0 / 384.0,
+        0.0,
+        500.0 / 1113.0,
+        125.0 / 192.0,
+        -2187.0 / 6784.0,
+        11.0 / 84.0,
+    ],
+];
+/// 5th-order minus embedded 4th-order weights.
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+/// Dense-output weights (4th-order continuous extension).
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
+
+/// The nodes c_i of the stages (fractions of the step at which each stage is evaluated).
+const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+
+/// One accepted Runge-Kutta step with what its dense output needs.
+pub(super) struct Step {
+    pub(super) y0: State,
+    pub(super) y1: State,
+    k: [State; 7],
+    h: f64,
+    /// The embedded error estimate of each component (5th minus 4th order).
+    pub(super) err: State,
+    /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
+    /// tolerance) while the clip was on: the step integrated across a clip switch.
+    pub(super) pull: Option<f64>,
+}
+
+impl Step {
+    /// The state at fraction `theta` of the step (4th-order interpolant).
+    pub(super) fn at(&self, theta: f64) -> State {
+        let eta = 1.0 - theta;
+        std::array::from_fn(|i| {
+            let r2 = self.y1[i] - self.y0[i];
+            let r3 = self.h * self.k[0][i] - r2;
+            let r4 = r2 - self.h * self.k[6][i] - r3;
+            let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
+            self.y0[i] + theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)))
+        })
+    }
+}
+
+impl Reference<'_> {
+    /// One Dormand-Prince step from `y0` with first stage `k1`; returns the step and the
+    /// scaled error norm (<= 1: accepted).
+    pub(super) fn dp_step(&self, m: &Mode, y0: &State, k1: &State, h: f64) -> (Step, f64) {
+        let mut k = [[0.0; NS]; 7];
+        k[0] = *k1;
+        let mut pull = None;
+        for st in 1..7 {
+            let mut yi = *y0;
+            for i in 0..NS {
+                let mut acc = 0.0;
+                for j in 0..st {
+                    acc += A[st][j] * k[j][i];
+                }
+                yi[i] += h * acc;
+            }
+            let (kk, e) = self.eval(m, &yi);
+            k[st] = kk;
+            if pull.is_none() && self.clipped(m) && e.fn_raw < -self.force_tol {
+                pull = Some(C[st]);
+            }
+        }
+        // The 7th stage is evaluated at the 5th-order solution itself (FSAL).
+        let mut y1 = *y0;
+        for i in 0..NS {
+            let mut acc = 0.0;
+            for j in 0..6 {
+                acc += A[6][j] * k[j][i];
+            }
+            y1[i] += h * acc;
+        }
+        let err_vec: State =
+            std::array::from_fn(|i| h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>());
+        // The spring elongation is not integrated outside stick (there it is algebraic).
+        let err = (0..NS)
+            .filter(|&i| i != XI || m.tan == Tan::Stick)
+            .map(|i| err_vec[i].abs() / (self.tol * self.scale[i]))
+            .fold(0.0, f64::max);
+        let step = Step {
+            y0: *y0,
+            y1,
+            k,
+            h,
+            err: err_vec,
+            pull,
+        };
+        (step, err)
+    }
+}

@@ -1,0 +1,252 @@
+//! The switches that end a piece: their event functions (continuous, <= 0 while the piece's
+//! mode holds), which of them can end a given mode, and where inside a step one fires.
+
+use super::dopri::Step;
+use super::law::{Eval, Reference};
+use super::mode::{Mode, Tan, Touch};
+use super::{State, PHI, VY, Y};
+
+/// The switches that end a piece. Each has a continuous event function that is <= 0 while
+/// the piece's mode holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Event {
+    Touch,
+    Separate,
+    EnterLeft,
+    EnterRight,
+    LeaveLeft,
+    LeaveRight,
+    ClipOff,
+    ClipOn,
+    ToSlip,
+    ToStick,
+}
+
+impl Reference<'_> {
+    /// Whether the clip is watched in mode `m`: on, with an overlap, not held for chattering.
+    pub(super) fn clipped(&self, m: &Mode) -> bool {
+        m.clip_on && !m.clip_hold && m.touch != Touch::Off
+    }
+
+    /// The events that can end a piece of mode `m`.
+    pub(super) fn candidates(&self, m: &Mode) -> Vec<Event> {
+        let mut out = Vec::with_capacity(8);
+        match m.touch {
+            Touch::Off => {
+                out.push(Event::Touch);
+                return out;
+            }
+            Touch::Disc => out.push(Event::Separate),
+            Touch::Poly { len, .. } => {
+                let n = self.verts.len();
+                if len + 1 < n {
+                    out.push(Event::EnterLeft);
+                    out.push(Event::EnterRight);
+                }
+                out.push(Event::LeaveLeft);
+                if len > 1 {
+                    out.push(Event::LeaveRight);
+                }
+            }
+        }
+        if !m.clip_hold {
+            out.push(if m.clip_on {
+                Event::ClipOff
+            } else {
+                Event::ClipOn
+            });
+        }
+        match m.tan {
+            Tan::Stick => out.push(Event::ToSlip),
+            Tan::Slip(_) => out.push(Event::ToStick),
+            Tan::None | Tan::Free => {}
+        }
+        out
+    }
+
+    /// The event function: > 0 once the piece's mode no longer holds.
+    pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        let (y, phi) = (s[Y], s[PHI]);
+        let n = self.verts.len().max(1);
+        let poly = |k: usize| self.corner(k, y, phi.sin_cos()).1;
+        match (ev, m.touch) {
+            (Event::Touch, _) => self.model.scene.shape.touch_height(phi) - y,
+            (Event::Separate, _) => y - self.model.r,
+            (Event::EnterLeft, Touch::Poly { first, .. }) => -poly(first + n - 1),
+            (Event::EnterRight, Touch::Poly { first, len, .. }) => -poly(first + len),
+            (Event::LeaveLeft, Touch::Poly { first, .. }) => poly(first),
+            (Event::LeaveRight, Touch::Poly { first, len, .. }) => poly(first + len - 1),
+            (Event::ClipOff, _) => -self.eval(m, s).1.fn_raw,
+            (Event::ClipOn, _) => {
+                // Only an overlap can push: once every held corner has risen above the plate
+                // the held continuation is no contact, whatever sign its force has.
+                let e = self.eval(m, s).1;
+                if e.depth > 0.0 {
+                    e.fn_raw
+                } else {
+                    f64::NEG_INFINITY
+                }
+            }
+            (Event::ToSlip, _) => {
+                // Stick starts with the spring on the cone (|trial| = mu F_n up to round-off):
+                // a margin of 1e-12 mu F_n keeps round-off from ending it at once (a chatter
+                // of zero-length pieces, then a sliding mode the tight run never enters).
+                let e = self.eval(m, s).1;
+                e.trial.abs() - self.mu * e.forces.fy * (1.0 + 1e-12)
+            }
+            (Event::ToStick, _) => self.slip_to_stick(m, s),
+            _ => f64::NEG_INFINITY,
+        }
+    }
+
+    /// Positive when a sticking spring would stay inside the Coulomb cone: the value
+    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates by central differences along the
+    /// motion of the slipping body.
+    pub(super) fn slip_to_stick(&self, m: &Mode, s: &State) -> f64 {
+        let Tan::Slip(sg) = m.tan else {
+            return f64::NEG_INFINITY;
+        };
+        let (d, e) = self.eval(m, s);
+        let mut h = self.fd_step;
+        if let (Touch::Disc, None) = (m.touch, self.linear()) {
+            // Keep both sample points inside the segment (no continuation beyond separation).
+            if e.depth <= 0.0 {
+                return f64::NEG_INFINITY;
+            }
+            h = h.min(0.25 * e.depth / s[VY].abs().max(f64::MIN_POSITIVE));
+        }
+        let shifted = |sign: f64| {
+            let mut p = *s;
+            for i in 0..6 {
+                p[i] += sign * h * d[i];
+            }
+            self.eval(m, &p).1
+        };
+        let (ep, em) = (shifted(1.0), shifted(-1.0));
+        let dfn = (ep.fn_raw - em.fn_raw) / (2.0 * h);
+        let (k_xi, rate, ct) = self.model.spring(e.depth);
+        // The damping force's rate: c_t dv_t/dt, and for Mindlin's c_t(delta) its own change.
+        let dct = if self.model.mindlin {
+            let c = |ev: &Eval| self.model.spring(ev.depth).2 * ev.v_t;
+            (c(&ep) - c(&em)) / (2.0 * h)
+        } else {
+            ct * (ep.v_t - em.v_t) / (2.0 * h)
+        };
+        self.mu * dfn + sg * (k_xi * rate * e.v_t + dct)
+    }
+
+    /// Fraction of `step` at which event `ev` first fires (its function turns positive),
+    /// given that it fires at the end. Secant and bisection alternate on the dense output.
+    pub(super) fn locate(&self, m: &Mode, ev: Event, step: &Step, g1: f64) -> f64 {
+        self.locate_in(m, ev, step, 0.0, 1.0, g1)
+    }
+
+    /// As [`Self::locate`], within [lo, hi] of the step, the event function positive at hi.
+    pub(super) fn locate_in(
+        &self,
+        m: &Mode,
+        ev: Event,
+        step: &Step,
+        lo: f64,
+        hi: f64,
+        g1: f64,
+    ) -> f64 {
+        let g = |th: f64| self.event_value(m, ev, &step.at(th));
+        let g0 = if lo == 0.0 {
+            self.event_value(m, ev, &step.y0)
+        } else {
+            g(lo)
+        };
+        if g0 > 0.0 {
+            return lo;
+        }
+        let (mut lo, mut hi, mut glo, mut ghi) = (lo, hi, g0, g1);
+        for it in 0..200 {
+            if hi - lo <= 1e-14 {
+                break;
+            }
+            let mut th = if it % 2 == 0 && ghi > glo && glo.is_finite() && ghi.is_finite() {
+                lo + (hi - lo) * (-glo) / (ghi - glo)
+            } else {
+                0.5 * (lo + hi)
+            };
+            let w = hi - lo;
+            th = th.clamp(lo + 0.01 * w, hi - 0.01 * w);
+            let gm = g(th);
+            if gm > 0.0 {
+                hi = th;
+                ghi = gm;
+            } else {
+                lo = th;
+                glo = gm;
+            }
+        }
+        hi
+    }
+}
+
+impl Reference<'_> {
+    /// The fraction of `step` at which event `ev` first fires, if it does inside the step.
+    pub(super) fn switch_in(&self, m: &Mode, ev: Event, step: &Step) -> Option<f64> {
+        let g1 = self.event_value(m, ev, &step.y1);
+        if g1 > 0.0 {
+            Some(self.locate(m, ev, step, g1))
+        } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
+            // A stage saw the plate pull although the end state does not: the clip
+            // switched inside the step (and back, in the held continuation); find
+            // where, on the dense output up to that stage.
+            (1..=16).map(|k| c * k as f64 / 16.0).find_map(|th| {
+                let g = self.event_value(m, ev, &step.at(th));
+                let lo = th - c / 16.0;
+                (g > 0.0).then(|| self.locate_in(m, ev, step, lo, th, g))
+            })
+        } else if let Some(parts) = interior_samples(ev) {
+            // A corner may dip below the plate and rise again within one step (a grazing
+            // corner beside the chord), a short stick phase may begin and end within one (the
+            // disc at theta 54, mu 0.7 at tol 1e-6 missed one: e_T off by 2e-4): look inside
+            // the step too.
+            let w = 1.0 / parts as f64;
+            (1..parts).map(|k| k as f64 * w).find_map(|th| {
+                let g = self.event_value(m, ev, &step.at(th));
+                (g > 0.0).then(|| self.locate_in(m, ev, step, th - w, th, g))
+            })
+        } else {
+            None
+        }
+    }
+
+    /// A clip switch before a corner leaves (or the disc separates) at `th` of `step`. With
+    /// damping the force pulls in the last stretch before a corner leaves (F = delta (k delta
+    /// + c delta') < 0 as delta -> 0 while it falls), so the clip switches off there; the
+    /// check at the step's end cannot see it, since past the leave point the held formulas
+    /// are no contact (a corner's area grows again like depth^2 above the plate): a step of
+    /// 2 t_ref once crossed the pulling tail unclipped (the 12-gon at theta 74, mu 0.5: e_N off
+    /// by 4e-5). Sampled on the dense output, densest towards the leave point.
+    pub(super) fn clip_before_leaving(&self, m: &Mode, step: &Step, th: f64) -> Option<(f64, Event)> {
+        if !self.clipped(m) || th <= 0.0 {
+            return None;
+        }
+        const AT: [f64; 10] = [0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.9375, 0.96875, 0.984375];
+        let mut lo = 0.0;
+        for f in AT {
+            let g = self.event_value(m, Event::ClipOff, &step.at(f * th));
+            if g > 0.0 {
+                let at = self.locate_in(m, Event::ClipOff, step, lo, f * th, g);
+                return Some((at, Event::ClipOff));
+            }
+            lo = f * th;
+        }
+        None
+    }
+}
+
+/// Into how many parts a step is cut to look for an event that may fire and clear again
+/// inside it (its function positive only in the middle), or `None` for events whose function
+/// is monotone over a step.
+fn interior_samples(ev: Event) -> Option<usize> {
+    match ev {
+        Event::EnterLeft | Event::EnterRight | Event::Touch => Some(8),
+        Event::ToStick | Event::ToSlip => Some(4),
+        _ => None,
+    }
+}

@@ -1,0 +1,181 @@
+//! The mode of a piece: which overlap formula, clip state and tangential law hold, the
+//! mode a contact starts in, and the switch of mode at an event (with the algebraic part of
+//! the state it implies).
+
+use super::events::Event;
+use super::law::{Eval, Reference};
+use super::run::Tally;
+use super::{State, PHI, XI, Y};
+use crate::geometry::Shape;
+use crate::law::carrying;
+
+/// Which overlap formula holds in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Touch {
+    /// No overlap: free flight.
+    Off,
+    /// The disc's circular segment.
+    Disc,
+    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
+    /// lowest of them (for the overlap's x_low only).
+    Poly {
+        first: usize,
+        len: usize,
+        low: usize,
+    },
+}
+
+/// The tangential law in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Tan {
+    /// mu = 0 or no overlap.
+    None,
+    /// Spring and damper within the Coulomb cone; xi integrated.
+    Stick,
+    /// F_t = mu F_n s, s = +-1.
+    Slip(f64),
+    /// The normal force is clipped: no tangential force, xi = -c_t v_t / k_t.
+    Free,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    pub(super) touch: Touch,
+    pub(super) clip_on: bool,
+    /// The clip held off for one step, its events ignored, where it chatters (see
+    /// `Run::resolve_chatter`).
+    pub(super) clip_hold: bool,
+    pub(super) tan: Tan,
+}
+
+impl Reference<'_> {
+    /// The corners below the plate when a polygon first touches: the lowest one and its
+    /// neighbours that are not above the plate.
+    pub(super) fn initial_run(&self, y: f64, phi: f64) -> Touch {
+        let n = self.verts.len();
+        let sc = phi.sin_cos();
+        let yk = |k: usize| self.corner(k, y, sc).1;
+        let low = (0..n).min_by(|&i, &j| yk(i).total_cmp(&yk(j))).unwrap_or(0);
+        let (mut first, mut len) = (low, 1);
+        while len + 2 < n && yk(first + n - 1) <= 0.0 {
+            first = (first + n - 1) % n;
+            len += 1;
+        }
+        while len + 2 < n && yk(first + len) <= 0.0 {
+            len += 1;
+        }
+        Touch::Poly { first, len, low }
+    }
+
+    /// The tangential mode when the normal force (re)appears: stick if the spring's trial
+    /// force is inside the cone, else slip in its direction. A wrong guess (both zero at first
+    /// touch) is corrected by the events at once.
+    pub(super) fn initial_tan(&self, m: &Mode, s: &State) -> Tan {
+        if self.mu == 0.0 {
+            return Tan::None;
+        }
+        let probe = Mode {
+            tan: Tan::Stick,
+            ..*m
+        };
+        let e = self.eval(&probe, s).1;
+        let cap = self.mu * e.forces.fy.max(0.0);
+        if e.trial.abs() <= cap {
+            Tan::Stick
+        } else {
+            Tan::Slip(e.trial.signum())
+        }
+    }
+}
+
+/// Switches the mode at an event and sets the algebraic part of the state.
+pub(super) fn apply(
+    ode: &Reference,
+    m: &mut Mode,
+    ev: Event,
+    s: &mut State,
+    t: f64,
+    tally: &mut Tally,
+) {
+    let model = ode.model;
+    let n = ode.verts.len().max(1);
+    let e = ode.eval(m, s).1;
+    let (kt, _, ct) = model.spring(e.depth);
+    match ev {
+        Event::Touch => {
+            m.touch = match model.scene.shape {
+                Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
+                Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
+            };
+            m.clip_on = true;
+            s[XI] = 0.0;
+            m.tan = Tan::None;
+            m.tan = ode.initial_tan(m, s);
+            tally.contacts += 1;
+            tally.contact_start = t;
+            tally.stuck = false;
+        }
+        Event::Separate => separate(m, s, t, tally),
+        Event::EnterLeft | Event::EnterRight | Event::LeaveLeft | Event::LeaveRight => {
+            if let Touch::Poly { first, len, low } = m.touch {
+                let (first, len) = match ev {
+                    Event::EnterLeft => ((first + n - 1) % n, len + 1),
+                    Event::EnterRight => (first, len + 1),
+                    Event::LeaveLeft => ((first + 1) % n, len - 1),
+                    _ => (first, len - 1),
+                };
+                if len == 0 {
+                    separate(m, s, t, tally);
+                } else {
+                    // Keep the lowest corner inside the run.
+                    let inside = (low + n - first) % n < len;
+                    let low = if inside { low } else { first };
+                    m.touch = Touch::Poly { first, len, low };
+                }
+            }
+        }
+        Event::ClipOff => {
+            m.clip_on = false;
+            if ode.mu > 0.0 {
+                m.tan = Tan::Free;
+                s[XI] = carrying(0.0, kt, ct, e.v_t);
+            }
+        }
+        Event::ClipOn => {
+            m.clip_on = true;
+            m.tan = ode.initial_tan(m, s);
+        }
+        Event::ToSlip => {
+            start_slip(ode, m, s, &e);
+            if tally.stuck {
+                tally.slip_events += 1;
+            }
+        }
+        Event::ToStick => {
+            // The spring takes over the force it carried while slipping.
+            s[XI] = carrying(e.forces.f_t, kt, ct, e.v_t);
+            m.tan = Tan::Stick;
+        }
+    }
+}
+
+/// Slip in the direction of the trial force (against the slip velocity where it is zero);
+/// the spring follows algebraically. `e` is the evaluation at `s` in the stick mode.
+pub(super) fn start_slip(ode: &Reference, m: &mut Mode, s: &mut State, e: &Eval) {
+    let (kt, _, ct) = ode.model.spring(e.depth);
+    let sg = if e.trial != 0.0 {
+        e.trial.signum()
+    } else {
+        -e.v_t.signum()
+    };
+    m.tan = Tan::Slip(sg);
+    s[XI] = carrying(ode.mu * e.forces.fy * sg, kt, ct, e.v_t);
+}
+
+fn separate(m: &mut Mode, s: &mut State, t: f64, tally: &mut Tally) {
+    m.touch = Touch::Off;
+    m.clip_on = false;
+    m.tan = Tan::None;
+    s[XI] = 0.0;
+    tally.contact_time += t - tally.contact_start;
+}

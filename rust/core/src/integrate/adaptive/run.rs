@@ -1,0 +1,648 @@
+//! The loop of one impact: step, reject or accept, end the piece at the first switch, handle
+//! chattering switches, and build the record.
+
+use super::dopri::Step;
+use super::events::Event;
+use super::law::{Eval, Reference};
+use super::mode::{apply, start_slip, Mode, Tan, Touch};
+use super::{
+    ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
+};
+use crate::cancel::Cancel;
+use crate::error::Result;
+use crate::geometry::Shape;
+use crate::impact::budget::{budget_for, reference_contact_steps};
+use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::law::NormalForce;
+use crate::model::{Initial, Model};
+use std::f64::consts::PI;
+
+/// Bookkeeping of one impact that is not part of the ODE state.
+#[derive(Default)]
+pub(super) struct Tally {
+    pub(super) contact_start: f64,
+    pub(super) contact_time: f64,
+    pub(super) contacts: u32,
+    pub(super) slip_events: u64,
+    pub(super) stuck: bool,
+    pub(super) max_depth: f64,
+    pub(super) max_area: f64,
+}
+
+/// Smallest error scale of a velocity component, relative to the impact's speed.
+const SCALE_FLOOR: f64 = 1e-3;
+
+/// The error scale of each state component, from the impact's own scales (so that a scene
+/// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
+/// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
+/// spin; the speed where a component is zero), the positions' what those velocities cover
+/// in t_c / pi, the spring's the force that moves vx in t_c, the works' the energy.
+fn error_scales(model: &Model, init: &Initial, speed: f64, t_est: f64, energy: f64) -> State {
+    let r = model.r;
+    let v_in = init.vx.hypot(init.vy);
+    // Floored at 1e-3 of the speed (spin included): a component far below the others (a
+    // grazing impact's v_y, a spinning body's v_x) cannot be followed to `tol` of itself in
+    // double precision, and asking for it costs millions of steps (a triangle at 0.01 deg and
+    // 1e4 deg/s took 3e7). Over the study's grid (theta >= 4 deg) no floor is reached.
+    let or_speed = |x: f64| x.clamp(SCALE_FLOOR * speed, speed);
+    let mut scale = [0.0; NS];
+    scale[VX] = or_speed(init.vx.abs());
+    scale[VY] = or_speed(init.vy.abs());
+    scale[OM] = or_speed(v_in) / r;
+    let t_c = t_est / PI;
+    scale[X] = scale[VX] * t_c;
+    scale[Y] = scale[VY] * t_c;
+    scale[PHI] = scale[OM] * t_c;
+    // Mindlin's xi is a force (section 14.4).
+    let force_scale = model.mass * scale[VX] / t_est;
+    scale[XI] = force_scale / if model.mindlin { 1.0 } else { model.kt };
+    scale[W_EL] = energy;
+    scale[W_D] = energy;
+    scale[W_T] = energy;
+    scale
+}
+
+/// `err_est` from the local error estimates accumulated over the accepted steps (root sum of
+/// squares, components VX, VY, OM): the largest over e_N, e_T, e_kin and omega_out r / v.
+fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
+    let v_in = init.vx.hypot(init.vy);
+    let e_t = if init.vx != 0.0 {
+        acc[VX] / init.vx.abs()
+    } else {
+        0.0
+    };
+    let e_n = acc[VY] / init.vy.abs();
+    let e_kin = acc[VX].hypot(acc[VY]) / v_in;
+    let spin = acc[OM] * r / v_in;
+    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin)
+}
+
+impl Reference<'_> {
+    /// The largest step near a point where a disc's force is not smooth (touch and
+    /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
+    /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
+    /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
+    /// first after touch, and towards separation the steps halve the time left until then.
+    fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, t_est: f64) -> f64 {
+        let smooth_law = self.linear().is_some();
+        if smooth_law || m.touch != Touch::Disc {
+            return f64::INFINITY;
+        }
+        let h_sing = t_est * self.tol.powf(2.0 / 3.0);
+        if fresh_touch {
+            return h_sing;
+        }
+        let depth = self.model.r - s[Y];
+        if s[VY] > 0.0 && depth > 0.0 {
+            (0.5 * depth / s[VY]).max(h_sing)
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The error of a step across or near a point where the disc's force is not smooth (the
+    /// first [`SINGULAR_STEPS`] steps after touch, where the damping still grows like
+    /// t^(1/2); a step ending on separation), which the embedded estimate does not see: the
+    /// step redone as two halves, and the difference extrapolated for an error that falls like
+    /// h^(1/2) per unit time, as each half still holds the root singularity: 1 / (1 - 2^-1/2)
+    /// = 3.41 (1.55, for the singularity in the first half only, left 13 % of the disc's
+    /// impacts at tol 1e-4 with err_est below the error). Zero for every other step.
+    #[allow(clippy::too_many_arguments)]
+    fn singular_error(
+        &self,
+        m: &Mode,
+        s: &State,
+        k1: &State,
+        h: f64,
+        y1: &State,
+        near_touch: bool,
+        event: Option<Event>,
+    ) -> State {
+        let across = near_touch || event == Some(Event::Separate);
+        if !across || h <= 0.0 || m.touch != Touch::Disc || self.linear().is_some() {
+            return [0.0; NS];
+        }
+        let (half, _) = self.dp_step(m, s, k1, 0.5 * h);
+        let (k_mid, _) = self.eval(m, &half.y1);
+        let (second, _) = self.dp_step(m, &half.y1, &k_mid, 0.5 * h);
+        std::array::from_fn(|i| 3.41 * (second.y1[i] - y1[i]).abs())
+    }
+}
+
+/// Consecutive zero-length pieces after which a step ignores its events (see `first_switch`).
+const MAX_ZERO_PIECES: u32 = 64;
+
+/// Steps after a disc's touch whose error is estimated by step halving (see
+/// `Reference::singular_error`): the steps grow at most 5-fold, so these cover the first
+/// ~150 lengths of the first step.
+const SINGULAR_STEPS: u32 = 4;
+
+/// Updates the largest depth and area with their maxima inside the taken part of a step:
+/// where a parabola through three samples peaks inside the step, a golden-section search on
+/// the dense output finds the peak (the depth peaks where its rate changes sign).
+fn track_extremes(ode: &Reference, m: &Mode, step: &Step, frac: f64, tally: &mut Tally) {
+    if m.touch == Touch::Off {
+        return;
+    }
+    let sample = |th: f64| {
+        let e = ode.eval(m, &step.at(th)).1;
+        [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)]
+    };
+    let ends = [sample(0.0), sample(0.5 * frac), sample(frac)];
+    for (k, best) in [&mut tally.max_depth, &mut tally.max_area]
+        .into_iter()
+        .enumerate()
+    {
+        let f3 = [ends[0][k], ends[1][k], ends[2][k]];
+        *best = best.max(peak(|th| sample(th)[k], f3, frac));
+    }
+}
+
+/// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
+/// frac; -inf otherwise (the ends are recorded as step ends).
+fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
+    // Parabola through the three samples: concave with its vertex within the step (a little
+    // margin, so that a peak just past a sample is not missed).
+    let curv = f0 - 2.0 * fm + f1;
+    if curv >= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let vertex = 0.5 + 0.25 * (f0 - f1) / curv;
+    if !(-0.1..=1.1).contains(&vertex) {
+        return f64::NEG_INFINITY;
+    }
+    let (mut a, mut b) = (0.0, frac);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+    let (mut fc, mut fd) = (f(c), f(d));
+    for _ in 0..80 {
+        if b - a <= 1e-15 * frac.max(1e-300) {
+            break;
+        }
+        if fc > fd {
+            b = d;
+            d = c;
+            fd = fc;
+            c = b - g * (b - a);
+            fc = f(c);
+        } else {
+            a = c;
+            c = d;
+            fc = fd;
+            d = a + g * (b - a);
+            fd = f(d);
+        }
+    }
+    fc.max(fd).max(f0).max(f1)
+}
+
+/// Integrates one impact from first touch (validated scene and initial state).
+pub(crate) fn integrate(
+    model: &Model,
+    init: &Initial,
+    depth_est: f64,
+    opts: &ReferenceOptions,
+    trace: Option<&mut Trace>,
+    cancel: &Cancel,
+) -> Result<Record> {
+    let mut run = Run::new(model, init, depth_est, opts, trace);
+    let stop = loop {
+        if run.cleared() {
+            break StopReason::Separated;
+        }
+        cancel.poll(run.attempts)?;
+        if let Some(stop) = run.budget_spent() {
+            break stop;
+        }
+        if let Some(stop) = run.attempt() {
+            break stop;
+        }
+    };
+    Ok(run.finish(stop))
+}
+
+/// What bounds one impact's integration, fixed at its start.
+struct Limits {
+    /// The largest step.
+    h_max: f64,
+    /// The estimated contact time.
+    t_est: f64,
+    /// Stop once this much time has passed ([`TIMEOUT_CONTACT_TIMES`] contact times).
+    t_end: f64,
+    /// The step budget (attempts, rejected steps included): steps may be much shorter than
+    /// h_max while a turning polygon brings corner after corner to the plate (counted in
+    /// N_c), but an explicit method crawls through a damper much stiffer than the contact (a
+    /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
+    /// out.
+    max_steps: u64,
+    /// Pieces shorter than this are negligible (for chattering and for slip counting).
+    tiny: f64,
+    /// The polygon's corners (0 for a disc or sphere).
+    n_corners: usize,
+    /// Kinetic energy before the impact.
+    energy_in: f64,
+}
+
+/// The state of one impact between steps.
+struct Run<'a, 't> {
+    ode: Reference<'a>,
+    init: &'a Initial,
+    lim: Limits,
+    trace: Option<&'t mut Trace>,
+    /// The ODE's state, its mode, and the first stage of the next step (FSAL).
+    s: State,
+    mode: Mode,
+    k1: State,
+    tally: Tally,
+    t: f64,
+    /// The step to try next.
+    h: f64,
+    /// Accepted steps, and attempts (rejected ones included).
+    steps: u64,
+    attempts: u64,
+    /// Consecutive pieces of zero length (switches that fire at once).
+    zero_pieces: u32,
+    /// Consecutive negligible pieces ended by a stick/slip switch, and by a clip switch.
+    chatter_t: u32,
+    chatter_c: u32,
+    /// Stick/slip switches ignored for one step (a sliding mode, see `resolve_chatter`).
+    hold_tangential: bool,
+    /// The accepted steps' local error estimates (sums of squares), for `err_est`.
+    err_acc: State,
+    /// The first step of a contact starts at a point where the disc's force is not smooth.
+    fresh_touch: bool,
+    /// Steps taken since the last touch: the first few still see the force's root singularity.
+    since_touch: u32,
+}
+
+impl<'a, 't> Run<'a, 't> {
+    fn new(
+        model: &'a Model,
+        init: &'a Initial,
+        depth_est: f64,
+        opts: &ReferenceOptions,
+        mut trace: Option<&'t mut Trace>,
+    ) -> Self {
+        let (ode, lim) = Reference::for_impact(model, init, depth_est, opts);
+        let shape = &model.scene.shape;
+        let mut s: State = [0.0; NS];
+        s[Y] = shape.touch_height(init.phi0);
+        s[PHI] = init.phi0;
+        s[VX] = init.vx;
+        s[VY] = init.vy;
+        s[OM] = init.omega;
+        let touch = match shape {
+            Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
+            Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
+        };
+        let mut mode = Mode {
+            touch,
+            clip_on: true,
+            clip_hold: false,
+            tan: Tan::None,
+        };
+        mode.tan = ode.initial_tan(&mode, &s);
+        let (k1, e0) = ode.eval(&mode, &s);
+        if let Some(tr) = trace.as_deref_mut() {
+            push(tr, 0.0, &s, &e0, ode.xi_of(&mode, &s, &e0));
+        }
+        Run {
+            h: lim.h_max,
+            ode,
+            init,
+            lim,
+            trace,
+            s,
+            mode,
+            k1,
+            tally: Tally {
+                contacts: 1,
+                ..Tally::default()
+            },
+            t: 0.0,
+            steps: 0,
+            attempts: 0,
+            zero_pieces: 0,
+            chatter_t: 0,
+            chatter_c: 0,
+            hold_tangential: false,
+            err_acc: [0.0; NS],
+            fresh_touch: true,
+            since_touch: 0,
+        }
+    }
+
+    /// Done once no part of the particle can reach the plate: its circumscribed circle is
+    /// clear and moving away, or every point of it moves away (v_y > r |omega|).
+    fn cleared(&self) -> bool {
+        let (s, r) = (&self.s, self.ode.model.r);
+        self.mode.touch == Touch::Off && s[VY] > 0.0 && (s[Y] >= r || s[VY] > r * s[OM].abs())
+    }
+
+    /// The budget that is spent, if one is.
+    fn budget_spent(&self) -> Option<StopReason> {
+        if self.attempts >= self.lim.max_steps {
+            Some(StopReason::StepBudget)
+        } else if self.t >= self.lim.t_end {
+            Some(StopReason::ContactTimeBudget)
+        } else {
+            None
+        }
+    }
+
+    /// The step to try: the next one, within the largest and the caps of the state.
+    fn capped_step(&self) -> f64 {
+        let (s, lim) = (&self.s, &self.lim);
+        let mut h = self.h.min(lim.h_max).min(self.ode.singular_cap(
+            &self.mode,
+            s,
+            self.fresh_touch,
+            lim.t_est,
+        ));
+        if lim.n_corners > 0 && s[OM] != 0.0 {
+            // A turning polygon brings corners to the plate: step finely enough (a quarter of
+            // the angle between corners) that no corner touches and leaves within one step,
+            // in flight (a missed re-contact) and in contact (a stale set of submerged corners).
+            h = h.min(0.25 * (2.0 * PI / lim.n_corners as f64) / s[OM].abs());
+        }
+        h
+    }
+
+    /// One attempted step: rejected (the next try is shorter) or taken up to the first
+    /// switch inside it. Returns why the impact stops, if it does.
+    fn attempt(&mut self) -> Option<StopReason> {
+        let h = self.capped_step();
+        self.h = h;
+        let (step, err) = self.ode.dp_step(&self.mode, &self.s, &self.k1, h);
+        self.attempts += 1;
+        let h_min = 1e-13 * self.lim.t_est;
+        if !err.is_finite() {
+            // Never accept a non-finite state: shrink hard and retry; if even the smallest
+            // step fails, stop with the last finite state and say so.
+            if h > h_min {
+                self.h = (0.1 * h).max(h_min);
+                return None;
+            }
+            return Some(StopReason::NonFinite);
+        }
+        if err > 1.0 && h > h_min {
+            self.h = (h * (0.9 * err.powf(-0.2)).max(0.2)).max(h_min);
+            return None;
+        }
+        let h_next = h * (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
+        let first = self.first_switch(&step);
+        if let Some(c) = step.pull.filter(|_| self.zero_pieces < MAX_ZERO_PIECES) {
+            if first.is_none_or(|(th, _)| th > c) && h > h_min {
+                // The step crossed a clip switch that its dense output does not show: never
+                // integrate across it with the unclipped, pulling force; shorten the step.
+                self.h = (0.5 * c * h).max(h_min);
+                return None;
+            }
+        }
+        self.take(&step, first, h_next);
+        None
+    }
+
+    /// Events: the earliest switch inside the step ends the piece there (fraction of the
+    /// step, switch).
+    fn first_switch(&self, step: &Step) -> Option<(f64, Event)> {
+        // The last resort against a loop of zero-length pieces: well above the chatter counts
+        // (16), whose remedies (`resolve_chatter`) must act first; at 16 a tangential chatter
+        // once switched every event off and the step crossed the clip with the plate pulling
+        // (the disc at theta 34, mu 0.6: e_N off by 1.2e-4).
+        if self.zero_pieces >= MAX_ZERO_PIECES {
+            return None;
+        }
+        let mut first: Option<(f64, Event)> = None;
+        let mut leaving: Option<f64> = None;
+        for ev in self.ode.candidates(&self.mode) {
+            if self.hold_tangential && matches!(ev, Event::ToSlip | Event::ToStick) {
+                continue;
+            }
+            if let Some(th) = self.ode.switch_in(&self.mode, ev, step) {
+                if matches!(ev, Event::LeaveLeft | Event::LeaveRight | Event::Separate) {
+                    leaving = Some(th);
+                }
+                if first.is_none_or(|(t0, _)| th < t0) {
+                    first = Some((th, ev));
+                }
+            }
+        }
+        // Whatever ends the step first, a corner that leaves inside it may leave after the
+        // clip switched off, which the step's end state (past the leave point) cannot show.
+        let clip = leaving.and_then(|th| self.ode.clip_before_leaving(&self.mode, step, th));
+        match (first, clip) {
+            (Some((t0, _)), Some((tc, ev))) if tc < t0 => Some((tc, ev)),
+            (None, Some(c)) => Some(c),
+            _ => first,
+        }
+    }
+
+    /// Takes the accepted `step` up to its first switch (all of it if none), switches the
+    /// mode there and prepares the next step (`h_next` the error control's proposal).
+    fn take(&mut self, step: &Step, first: Option<(f64, Event)>, h_next: f64) {
+        let h = self.h;
+        let (s_new, h_taken, event, err_taken) = match first {
+            None => (step.y1, h, None, step.err),
+            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev), step.err),
+            Some((th, ev)) if th * h <= 0.0 => (self.s, 0.0, Some(ev), [0.0; NS]),
+            Some((th, ev)) => {
+                // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
+                let (st, _) = self.ode.dp_step(&self.mode, &self.s, &self.k1, th * h);
+                (st.y1, th * h, Some(ev), st.err)
+            }
+        };
+        let near_touch = self.since_touch < SINGULAR_STEPS;
+        let singular =
+            self.ode
+                .singular_error(&self.mode, &self.s, &self.k1, h_taken, &s_new, near_touch, event);
+        for i in [VX, VY, OM] {
+            // In quadrature: the local errors' signs vary along an impact (summed, their
+            // absolute values overstated the error 15-fold at tol 1e-4 and 124-fold at 1e-10).
+            self.err_acc[i] += (err_taken[i].abs() + singular[i]).powi(2);
+        }
+        if event.is_none() {
+            self.zero_pieces = 0;
+        }
+        self.hold_tangential = false;
+        self.count_chatter(event, h_taken);
+        if h_taken > 0.0 {
+            self.fresh_touch = false;
+            self.since_touch += 1;
+            self.steps += 1;
+            self.zero_pieces = 0;
+            // Only a stick phase of some length counts for slip events: a guess of stick at
+            // first touch that the events correct at once, chattering, or the disc's stick of
+            // ~1e-9 t_c just after touch (the damping's rate, like t^(-1/2), opens the Coulomb
+            // cone faster than the spring loads; seen once steps are searched inside) is no
+            // micro-slip.
+            self.tally.stuck |= self.mode.tan == Tan::Stick && h_taken >= 1e-6 * self.lim.t_est;
+            // The deepest point inside the step (where the depth stops growing).
+            track_extremes(&self.ode, &self.mode, step, h_taken / h, &mut self.tally);
+        } else {
+            self.zero_pieces += 1;
+        }
+        self.t += h_taken;
+        self.s = s_new;
+        self.end_clip_hold();
+        if let Some(ev) = event {
+            self.fresh_touch |= ev == Event::Touch;
+            if ev == Event::Touch {
+                self.since_touch = 0;
+            }
+            apply(
+                &self.ode,
+                &mut self.mode,
+                ev,
+                &mut self.s,
+                self.t,
+                &mut self.tally,
+            );
+        }
+        self.resolve_chatter();
+        self.refresh(h_taken);
+        self.h = if event.is_some() {
+            h_next.min(h)
+        } else {
+            h_next
+        };
+    }
+
+    /// Counts consecutive negligible pieces ended by the same kind of switch.
+    fn count_chatter(&mut self, event: Option<Event>, h_taken: f64) {
+        let tiny = self.lim.tiny;
+        match event {
+            Some(Event::ToSlip | Event::ToStick) if h_taken < tiny => self.chatter_t += 1,
+            Some(Event::ClipOn | Event::ClipOff) if h_taken < tiny => self.chatter_c += 1,
+            _ if h_taken >= tiny => (self.chatter_t, self.chatter_c) = (0, 0),
+            _ => {}
+        }
+    }
+
+    /// After a step with the clip held off: the end state decides the clip again.
+    fn end_clip_hold(&mut self) {
+        if self.mode.clip_hold {
+            self.mode.clip_hold = false;
+            if self.ode.eval(&self.mode, &self.s).1.fn_raw > 0.0 {
+                self.mode.clip_on = true;
+                self.mode.tan = self.ode.initial_tan(&self.mode, &self.s);
+            }
+        }
+    }
+
+    /// Leaves a chattering switch for one step in the mode of its sliding motion.
+    fn resolve_chatter(&mut self) {
+        let (mode, s) = (&mut self.mode, &mut self.s);
+        if self.chatter_c >= 16 && !mode.clip_on {
+            // The clip switches on and off at once: a damper much stiffer than the contact
+            // holds F_el + F_d at zero (a sliding mode), so the force is about zero too. Take
+            // one step without it; an explicit method could not follow the damper anyway.
+            mode.clip_hold = true;
+            self.chatter_c = 0;
+        }
+        if self.chatter_t >= 16 {
+            // Stick and slip each end at once: the motion slides along |F_trial| = mu F_n
+            // (a Filippov sliding mode), whose force law is slip's. Take one step in slip.
+            if mode.tan == Tan::Stick {
+                let e = self.ode.eval(mode, s).1;
+                start_slip(&self.ode, mode, s, &e);
+            }
+            self.hold_tangential = true;
+            self.chatter_t = 0;
+        }
+    }
+
+    /// The first stage of the next step, the extremes and the trace at the new state.
+    fn refresh(&mut self, h_taken: f64) {
+        let (k, e) = self.ode.eval(&self.mode, &self.s);
+        self.k1 = k;
+        self.tally.max_depth = self.tally.max_depth.max(e.depth);
+        if let Some(o) = e.forces.overlap {
+            self.tally.max_area = self.tally.max_area.max(o.area);
+        }
+        if let Some(tr) = self.trace.as_deref_mut() {
+            if h_taken > 0.0 {
+                push(
+                    tr,
+                    self.t,
+                    &self.s,
+                    &e,
+                    self.ode.xi_of(&self.mode, &self.s, &e),
+                );
+            }
+        }
+    }
+
+    /// The record of the impact, ended for `stop`.
+    fn finish(mut self, stop: StopReason) -> Record {
+        let (model, init, s) = (self.ode.model, self.init, &self.s);
+        if self.mode.touch != Touch::Off {
+            self.tally.contact_time += self.t - self.tally.contact_start;
+        }
+        let tally = &self.tally;
+        let mut rec = Record {
+            contact_time: tally.contact_time,
+            steps: self.steps,
+            contacts: tally.contacts,
+            max_depth: tally.max_depth,
+            max_area: tally.max_area,
+            slip_events: tally.slip_events,
+            energy_in: self.lim.energy_in,
+            work_normal: s[W_EL] + s[W_D],
+            work_friction: s[W_T],
+            step_budget: self.lim.max_steps,
+            stop,
+            err_est: Some(error_estimate(&self.err_acc.map(f64::sqrt), init, model.r)),
+            ..Record::default()
+        };
+        rec.close(model, init, &[s[VX], s[VY], s[OM]]);
+        rec
+    }
+}
+
+/// Appends the state `s` at time `t` to the trace.
+fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
+    let (q, v) = ([s[X], s[Y], s[PHI]], [s[VX], s[VY], s[OM]]);
+    tr.push(t, &q, &v, &e.forces, e.depth, xi);
+}
+
+impl<'a> Reference<'a> {
+    /// The ODE of one impact and the limits of its integration.
+    fn for_impact(
+        model: &'a Model,
+        init: &Initial,
+        depth_est: f64,
+        opts: &ReferenceOptions,
+    ) -> (Self, Limits) {
+        let r = model.r;
+        let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
+        let t_est = PI * depth_est / init.vy.abs();
+        let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
+        let energy_in = model.kinetic_energy(&[init.vx, init.vy, init.omega]);
+        let scale = error_scales(model, init, speed, t_est, energy_in);
+        let verts = model.scene.shape.vertices();
+        let ode = Reference {
+            model,
+            verts,
+            mu: model.scene.mu,
+            scale,
+            tol: opts.tol,
+            fd_step: 1e-5 * t_est,
+            force_tol: opts.tol * model.mass * speed / t_est,
+            normal: NormalForce::new(model),
+        };
+        let lim = Limits {
+            h_max,
+            t_est,
+            t_end: TIMEOUT_CONTACT_TIMES * t_est,
+            max_steps: budget_for(
+                model,
+                reference_contact_steps(model, init, depth_est, h_max, opts.tol),
+            ),
+            tiny: 1e-9 * t_est,
+            n_corners: verts.len(),
+            energy_in,
+        };
+        (ode, lim)
+    }
+}
