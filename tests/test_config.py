@@ -64,7 +64,7 @@ BAD = [
     ('[scene.shape]\nkind = "regular_polygon"\nn = 2\n[axes]\ntheta_deg = 30', "scene.shape: require `n` >= 3 (found 2)"),
     ("[axes]\ntheta_deg = [0, 30]", "axes.theta_deg: case 0: require `theta_deg` in (0, 90] degrees"),
     ("[axes]\ntheta_deg = 30\nthetaa = 1", "axes.thetaa: unknown axis (did you mean `theta_deg`?); allowed: theta_deg, omega_in"),
-    ('[axes]\ntheta_deg = 30\nintegrator = ["rk4"]', "axes.integrator: require values in 'gear5', 'verlet', 'reference' (found 'rk4')"),
+    ('[axes]\ntheta_deg = 30\nintegrator = ["rk4"]', "axes.integrator: require values in 'gear5', 'verlet', 'reference', 'adaptive' (found 'rk4')"),
     ("[axes]\ntheta_deg = 30\nn = [0, 2]", "axes.n: case 1: require `n` an integer >= 3, or 0 for an exact disc (found 2.0)"),
     ("[axes]\ntheta_deg = 30\nn = [0.5]", "axes.n: require integers: 0 (exact disc) or >= 3 (found 0.5)"),
     ("[axes]\ntheta_deg = 30\nmu = []", "axes.mu: require at least one value"),
