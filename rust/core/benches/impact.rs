@@ -16,7 +16,9 @@
 //! `cargo bench -p restitution-core --bench impact`
 
 use criterion::{Criterion, Throughput};
-use restitution_core::{estimate_max_depth, simulate, Initial, Integrator, Model, NormalLaw, Scene, Shape};
+use restitution_core::{
+    estimate_max_depth, simulate, Initial, Integrator, Model, NormalLaw, Scene, Shape,
+};
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
@@ -85,7 +87,10 @@ fn bench_impacts(c: &mut Criterion) {
 fn bench_overhead(c: &mut Criterion) {
     let mut group = c.benchmark_group("impact_overhead");
     let p = paper_initial();
-    for (name, scene, _) in configurations().into_iter().filter(|c| c.0.ends_with("gear5")) {
+    for (name, scene, _) in configurations()
+        .into_iter()
+        .filter(|c| c.0.ends_with("gear5"))
+    {
         let shape = name.trim_end_matches("_gear5");
         group.bench_function(format!("{shape}_model_new"), |b| {
             b.iter(|| Model::new(black_box(&scene)).expect("valid"))

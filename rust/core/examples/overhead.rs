@@ -20,7 +20,10 @@ fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
             let gamma = if vary { 0.33299 + 1e-6 * k } else { 0.33299 };
             let mut row = [f64::NAN; CASE_COLUMNS.len()];
             let set = |row: &mut [f64; CASE_COLUMNS.len()], name: &str, v: f64| {
-                row[CASE_COLUMNS.iter().position(|c| *c == name).expect("a column")] = v;
+                row[CASE_COLUMNS
+                    .iter()
+                    .position(|c| *c == name)
+                    .expect("a column")] = v;
             };
             for (name, v) in [
                 ("theta_deg", t as f64),
@@ -131,11 +134,20 @@ pub fn pieces(cases: &[Case]) {
     time("scene clone", &|c| {
         black_box(black_box(&c.scene).clone());
     });
-    let models: Vec<Model> = cases.iter().map(|c| Model::new(&c.scene).expect("valid")).collect();
+    let models: Vec<Model> = cases
+        .iter()
+        .map(|c| Model::new(&c.scene).expect("valid"))
+        .collect();
     let models = &models;
-    let index = |c: &Case| (c as *const Case as usize - cases.as_ptr() as usize) / std::mem::size_of::<Case>();
+    let index = |c: &Case| {
+        (c as *const Case as usize - cases.as_ptr() as usize) / std::mem::size_of::<Case>()
+    };
     time("check_initial", &|c| {
-        black_box(models[index(c)].check_initial(black_box(&c.init)).expect("valid"));
+        black_box(
+            models[index(c)]
+                .check_initial(black_box(&c.init))
+                .expect("valid"),
+        );
     });
     time("estimate_max_depth", &|c| {
         black_box(estimate_max_depth(&models[index(c)], black_box(&c.init)).expect("valid"));

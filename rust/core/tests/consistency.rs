@@ -669,7 +669,12 @@ fn report(t: &Tally) {
 fn known_open(failure: &str) -> bool {
     let linear_polygon = failure.contains(" linear ") && !failure.starts_with("disc");
     let fixed = failure.contains(" gear5 ") || failure.contains(" verlet ");
-    let check = ["energy residual", "mirror image", "rotated by", "groups differ"];
+    let check = [
+        "energy residual",
+        "mirror image",
+        "rotated by",
+        "groups differ",
+    ];
     linear_polygon && fixed && check.iter().any(|c| failure.contains(c))
 }
 

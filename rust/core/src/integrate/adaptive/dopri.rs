@@ -1,6 +1,6 @@
 //! The Dormand-Prince 5(4) step with its embedded error estimate and its dense output.
 
-use super::law::Reference;
+use super::law::{Eval, Reference};
 use super::mode::{Mode, Tan};
 use super::{State, NS, XI};
 
@@ -72,17 +72,35 @@ pub(super) struct Step {
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pub(super) pull: Option<f64>,
+    /// The dense output's coefficients r2 ... r5 of each component, formed on the first call
+    /// of [`Step::at`]: the search for switches inside a step calls it many times (it took a
+    /// sixth of the adaptive path's time when each call formed them again).
+    dense: std::cell::OnceCell<[[f64; 4]; NS]>,
+    /// The evaluation at `y1` (the last stage, first-same-as-last): its derivative is
+    /// `k[6]`; reused for the event functions at the step's end and for the next step.
+    pub(super) end: Eval,
 }
 
 impl Step {
+    /// The derivative at `y1` (the next step's first stage when it starts there).
+    pub(super) fn k_end(&self) -> State {
+        self.k[6]
+    }
+
     /// The state at fraction `theta` of the step (4th-order interpolant).
     pub(super) fn at(&self, theta: f64) -> State {
         let eta = 1.0 - theta;
+        let dense = self.dense.get_or_init(|| {
+            std::array::from_fn(|i| {
+                let r2 = self.y1[i] - self.y0[i];
+                let r3 = self.h * self.k[0][i] - r2;
+                let r4 = r2 - self.h * self.k[6][i] - r3;
+                let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
+                [r2, r3, r4, r5]
+            })
+        });
         std::array::from_fn(|i| {
-            let r2 = self.y1[i] - self.y0[i];
-            let r3 = self.h * self.k[0][i] - r2;
-            let r4 = r2 - self.h * self.k[6][i] - r3;
-            let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
+            let [r2, r3, r4, r5] = dense[i];
             self.y0[i] + theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)))
         })
     }
@@ -95,6 +113,7 @@ impl Reference<'_> {
         let mut k = [[0.0; NS]; 7];
         k[0] = *k1;
         let mut pull = None;
+        let mut end = Eval::default();
         for st in 1..7 {
             let mut yi = *y0;
             for i in 0..NS {
@@ -109,6 +128,7 @@ impl Reference<'_> {
             if pull.is_none() && self.clipped(m) && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
             }
+            end = e;
         }
         // The 7th stage is evaluated at the 5th-order solution itself (FSAL).
         let mut y1 = *y0;
@@ -133,6 +153,8 @@ impl Reference<'_> {
             h,
             err: err_vec,
             pull,
+            dense: std::cell::OnceCell::new(),
+            end,
         };
         (step, err)
     }

@@ -66,6 +66,18 @@ impl Reference<'_> {
 
     /// The event function: > 0 once the piece's mode no longer holds.
     pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        self.event_value_given(m, ev, s, None)
+    }
+
+    /// [`Self::event_value`], with the evaluation at `s` (derivative and forces) when known.
+    fn event_value_given(
+        &self,
+        m: &Mode,
+        ev: Event,
+        s: &State,
+        known: Option<(&State, &Eval)>,
+    ) -> f64 {
+        let eval = || known.map_or_else(|| self.eval(m, s), |(d, e)| (*d, *e));
         let (y, phi) = (s[Y], s[PHI]);
         let n = self.verts.len().max(1);
         let poly = |k: usize| self.corner(k, y, phi.sin_cos()).1;
@@ -76,11 +88,11 @@ impl Reference<'_> {
             (Event::EnterRight, Touch::Poly { first, len, .. }) => -poly(first + len),
             (Event::LeaveLeft, Touch::Poly { first, .. }) => poly(first),
             (Event::LeaveRight, Touch::Poly { first, len, .. }) => poly(first + len - 1),
-            (Event::ClipOff, _) => -self.eval(m, s).1.fn_raw,
+            (Event::ClipOff, _) => -eval().1.fn_raw,
             (Event::ClipOn, _) => {
                 // Only an overlap can push: once every held corner has risen above the plate
                 // the held continuation is no contact, whatever sign its force has.
-                let e = self.eval(m, s).1;
+                let e = eval().1;
                 if e.depth > 0.0 {
                     e.fn_raw
                 } else {
@@ -91,10 +103,10 @@ impl Reference<'_> {
                 // Stick starts with the spring on the cone (|trial| = mu F_n up to round-off):
                 // a margin of 1e-12 mu F_n keeps round-off from ending it at once (a chatter
                 // of zero-length pieces, then a sliding mode the tight run never enters).
-                let e = self.eval(m, s).1;
+                let e = eval().1;
                 e.trial.abs() - self.mu * e.forces.fy * (1.0 + 1e-12)
             }
-            (Event::ToStick, _) => self.slip_to_stick(m, s),
+            (Event::ToStick, _) => self.slip_to_stick(m, s, eval),
             _ => f64::NEG_INFINITY,
         }
     }
@@ -102,11 +114,11 @@ impl Reference<'_> {
     /// Positive when a sticking spring would stay inside the Coulomb cone: the value
     /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates by central differences along the
     /// motion of the slipping body.
-    pub(super) fn slip_to_stick(&self, m: &Mode, s: &State) -> f64 {
+    fn slip_to_stick(&self, m: &Mode, s: &State, eval: impl FnOnce() -> (State, Eval)) -> f64 {
         let Tan::Slip(sg) = m.tan else {
             return f64::NEG_INFINITY;
         };
-        let (d, e) = self.eval(m, s);
+        let (d, e) = eval();
         let mut h = self.fd_step;
         if let (Touch::Disc, None) = (m.touch, self.linear()) {
             // Keep both sample points inside the segment (no continuation beyond separation).
@@ -188,7 +200,7 @@ impl Reference<'_> {
 impl Reference<'_> {
     /// The fraction of `step` at which event `ev` first fires, if it does inside the step.
     pub(super) fn switch_in(&self, m: &Mode, ev: Event, step: &Step) -> Option<f64> {
-        let g1 = self.event_value(m, ev, &step.y1);
+        let g1 = self.event_value_given(m, ev, &step.y1, Some((&step.k_end(), &step.end)));
         if g1 > 0.0 {
             Some(self.locate(m, ev, step, g1))
         } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
@@ -216,17 +228,24 @@ impl Reference<'_> {
     }
 
     /// A clip switch before a corner leaves (or the disc separates) at `th` of `step`. With
-    /// damping the force pulls in the last stretch before a corner leaves (F = delta (k delta
-    /// + c delta') < 0 as delta -> 0 while it falls), so the clip switches off there; the
+    /// damping the force pulls in the last stretch before a corner leaves (F = delta times
+    /// (k delta + c delta') < 0 as delta -> 0 while it falls), so the clip switches off there; the
     /// check at the step's end cannot see it, since past the leave point the held formulas
     /// are no contact (a corner's area grows again like depth^2 above the plate): a step of
     /// 2 t_ref once crossed the pulling tail unclipped (the 12-gon at theta 74, mu 0.5: e_N off
     /// by 4e-5). Sampled on the dense output, densest towards the leave point.
-    pub(super) fn clip_before_leaving(&self, m: &Mode, step: &Step, th: f64) -> Option<(f64, Event)> {
+    pub(super) fn clip_before_leaving(
+        &self,
+        m: &Mode,
+        step: &Step,
+        th: f64,
+    ) -> Option<(f64, Event)> {
         if !self.clipped(m) || th <= 0.0 {
             return None;
         }
-        const AT: [f64; 10] = [0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.9375, 0.96875, 0.984375];
+        const AT: [f64; 10] = [
+            0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.9375, 0.96875, 0.984375,
+        ];
         let mut lo = 0.0;
         for f in AT {
             let g = self.event_value(m, Event::ClipOff, &step.at(f * th));
