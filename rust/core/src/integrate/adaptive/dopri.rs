@@ -1,7 +1,7 @@
 //! The Dormand-Prince 5(4) step with its embedded error estimate and its dense output.
 
 use super::law::{Eval, Reference};
-use super::mode::{Mode, Tan};
+use super::piece::{Mode, Tan};
 use super::{State, NS, XI};
 
 // Dormand-Prince 5(4) tableau (Dormand & Prince 1980; dense output of Hairer, Norsett & Wanner)
@@ -125,7 +125,7 @@ impl Reference<'_> {
             }
             let (kk, e) = self.eval(m, &yi);
             k[st] = kk;
-            if pull.is_none() && self.clipped(m) && e.fn_raw < -self.force_tol {
+            if pull.is_none() && m.clipped() && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
             }
             end = e;

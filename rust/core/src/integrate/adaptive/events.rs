@@ -3,31 +3,10 @@
 
 use super::dopri::Step;
 use super::law::{Eval, Reference};
-use super::mode::{Mode, Tan, Touch};
+use super::piece::{Event, Mode, Tan, Touch};
 use super::{State, PHI, VY, Y};
 
-/// The switches that end a piece. Each has a continuous event function that is <= 0 while
-/// the piece's mode holds.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Event {
-    Touch,
-    Separate,
-    EnterLeft,
-    EnterRight,
-    LeaveLeft,
-    LeaveRight,
-    ClipOff,
-    ClipOn,
-    ToSlip,
-    ToStick,
-}
-
 impl Reference<'_> {
-    /// Whether the clip is watched in mode `m`: on, with an overlap, not held for chattering.
-    pub(super) fn clipped(&self, m: &Mode) -> bool {
-        m.clip_on && !m.clip_hold && m.touch != Touch::Off
-    }
-
     /// The events that can end a piece of mode `m`.
     pub(super) fn candidates(&self, m: &Mode) -> Vec<Event> {
         let mut out = Vec::with_capacity(8);
@@ -240,7 +219,7 @@ impl Reference<'_> {
         step: &Step,
         th: f64,
     ) -> Option<(f64, Event)> {
-        if !self.clipped(m) || th <= 0.0 {
+        if !m.clipped() || th <= 0.0 {
             return None;
         }
         const AT: [f64; 10] = [

@@ -1,7 +1,7 @@
 //! The contact law in a held mode: the overlap and the forces of the piece's formulas,
 //! continued smoothly a little beyond the piece's end, and the time derivative of the state.
 
-use super::mode::{Mode, Tan, Touch};
+use super::piece::{Mode, Tan, Touch};
 use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::shape::crossing_x;
 use crate::geometry::Overlap;

@@ -35,6 +35,7 @@ mod dopri;
 mod events;
 mod law;
 mod mode;
+mod piece;
 mod run;
 
 use crate::cancel::Cancel;

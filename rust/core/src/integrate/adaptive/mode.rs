@@ -2,51 +2,11 @@
 //! mode a contact starts in, and the switch of mode at an event (with the algebraic part of
 //! the state it implies).
 
-use super::events::Event;
 use super::law::{Eval, Reference};
-use super::run::Tally;
+use super::piece::{Event, Mode, Tally, Tan, Touch};
 use super::{State, PHI, XI, Y};
 use crate::geometry::Shape;
 use crate::law::carrying;
-
-/// Which overlap formula holds in a piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Touch {
-    /// No overlap: free flight.
-    Off,
-    /// The disc's circular segment.
-    Disc,
-    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
-    /// lowest of them (for the overlap's x_low only).
-    Poly {
-        first: usize,
-        len: usize,
-        low: usize,
-    },
-}
-
-/// The tangential law in a piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Tan {
-    /// mu = 0 or no overlap.
-    None,
-    /// Spring and damper within the Coulomb cone; xi integrated.
-    Stick,
-    /// F_t = mu F_n s, s = +-1.
-    Slip(f64),
-    /// The normal force is clipped: no tangential force, xi = -c_t v_t / k_t.
-    Free,
-}
-
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Mode {
-    pub(super) touch: Touch,
-    pub(super) clip_on: bool,
-    /// The clip held off for one step, its events ignored, where it chatters (see
-    /// `Run::resolve_chatter`).
-    pub(super) clip_hold: bool,
-    pub(super) tan: Tan,
-}
 
 impl Reference<'_> {
     /// The corners below the plate when a polygon first touches: the lowest one and its

@@ -2,9 +2,9 @@
 //! chattering switches, and build the record.
 
 use super::dopri::Step;
-use super::events::Event;
 use super::law::{Eval, Reference};
-use super::mode::{apply, start_slip, Mode, Tan, Touch};
+use super::mode::{apply, start_slip};
+use super::piece::{Event, Mode, Tally, Tan, Touch};
 use super::{
     ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
 };
@@ -16,18 +16,6 @@ use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
 use crate::law::NormalForce;
 use crate::model::{Initial, Model};
 use std::f64::consts::PI;
-
-/// Bookkeeping of one impact that is not part of the ODE state.
-#[derive(Default)]
-pub(super) struct Tally {
-    pub(super) contact_start: f64,
-    pub(super) contact_time: f64,
-    pub(super) contacts: u32,
-    pub(super) slip_events: u64,
-    pub(super) stuck: bool,
-    pub(super) max_depth: f64,
-    pub(super) max_area: f64,
-}
 
 /// Smallest error scale of a velocity component, relative to the impact's speed.
 const SCALE_FLOOR: f64 = 1e-3;

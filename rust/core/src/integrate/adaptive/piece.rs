@@ -1,0 +1,77 @@
+//! What holds in one piece of an impact: its mode (overlap formula, clip, tangential law), the
+//! switches that end a piece, and the bookkeeping the switches update. Plain types, used by
+//! every other part of the adaptive path and using none of them.
+
+/// Which overlap formula holds in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Touch {
+    /// No overlap: free flight.
+    Off,
+    /// The disc's circular segment.
+    Disc,
+    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
+    /// lowest of them (for the overlap's x_low only).
+    Poly {
+        first: usize,
+        len: usize,
+        low: usize,
+    },
+}
+
+/// The tangential law in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Tan {
+    /// mu = 0 or no overlap.
+    None,
+    /// Spring and damper within the Coulomb cone; xi integrated.
+    Stick,
+    /// F_t = mu F_n s, s = +-1.
+    Slip(f64),
+    /// The normal force is clipped: no tangential force, xi = -c_t v_t / k_t.
+    Free,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    pub(super) touch: Touch,
+    pub(super) clip_on: bool,
+    /// The clip held off for one step, its events ignored, where it chatters (see
+    /// `Run::resolve_chatter`).
+    pub(super) clip_hold: bool,
+    pub(super) tan: Tan,
+}
+
+impl Mode {
+    /// Whether the clip is watched: on, with an overlap, not held for chattering.
+    pub(super) fn clipped(&self) -> bool {
+        self.clip_on && !self.clip_hold && self.touch != Touch::Off
+    }
+}
+
+/// The switches that end a piece. Each has a continuous event function that is <= 0 while
+/// the piece's mode holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Event {
+    Touch,
+    Separate,
+    EnterLeft,
+    EnterRight,
+    LeaveLeft,
+    LeaveRight,
+    ClipOff,
+    ClipOn,
+    ToSlip,
+    ToStick,
+}
+
+/// Bookkeeping of one impact that is not part of the ODE state.
+#[derive(Default)]
+pub(super) struct Tally {
+    pub(super) contact_start: f64,
+    pub(super) contact_time: f64,
+    pub(super) contacts: u32,
+    pub(super) slip_events: u64,
+    pub(super) stuck: bool,
+    pub(super) max_depth: f64,
+    pub(super) max_area: f64,
+}
