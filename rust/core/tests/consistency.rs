@@ -662,20 +662,26 @@ fn report(t: &Tally) {
 }
 
 /// Failures known and open (docs/consistency.md), reported but not failing the quick matrix:
-/// the linear law on a polygon with a fixed step. Each corner's dashpot force jumps when the
-/// corner crosses the plate (c_n times its approach speed at zero depth), and the fixed steps
-/// locate no mid-contact crossing: the energy audit then closes only to ~4e-5 (docs/model.md asks
-/// 1e-6), and with Verlet a mirrored or turned tumbling polygon differs by up to ~2e-3.
+/// the linear law on a polygon with Verlet, and Gear-5's energy audit with friction. Each
+/// corner's dashpot force jumps when the corner crosses the plate (c_n times its approach speed
+/// at zero depth). Gear-5 locates every crossing: its symmetry and scaling checks must pass,
+/// and its audit closes to 2e-6 without friction; with stick/slip switches on top of the
+/// restarts it closes to 4.3e-6 (5-gon, mu 10). Verlet keeps plain steps (its trapezoid audit
+/// leaves an O(h^2) term at every located jump, up to 7e-5): audit to ~5e-5, mirrored or turned
+/// tumbling polygons up to ~2e-3 apart.
 fn known_open(failure: &str) -> bool {
     let linear_polygon = failure.contains(" linear ") && !failure.starts_with("disc");
-    let fixed = failure.contains(" gear5 ") || failure.contains(" verlet ");
     let check = [
         "energy residual",
         "mirror image",
         "rotated by",
         "groups differ",
     ];
-    linear_polygon && fixed && check.iter().any(|c| failure.contains(c))
+    let verlet = failure.contains(" verlet ") && check.iter().any(|c| failure.contains(c));
+    let frictional_gear5 = failure.contains(" gear5 ")
+        && !failure.contains(" mu 0 ")
+        && failure.contains("energy residual");
+    linear_polygon && (verlet || frictional_gear5)
 }
 
 #[test]

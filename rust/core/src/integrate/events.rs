@@ -70,8 +70,15 @@ pub fn locate<G: PlateGeometry, S: Stepper>(
 
 /// Where on [0, 1] the function `g` (a corner's height) changes side of the plate (a corner at
 /// height <= 0 is below); the end of the final bracket on the far side, or `None` when both
-/// ends lie on the same side. Regula falsi with the Illinois modification, then bisection.
+/// ends lie on the same side.
 fn crossing(g: impl Fn(f64) -> f64) -> Option<f64> {
+    bracket(g).map(|(_, far)| far)
+}
+
+/// The final bracket (near, far) of a change of side of `g` on [0, 1]: `near` still on the
+/// side of s = 0, `far` on the other, at most a few ulp apart; `None` when both ends lie on the
+/// same side. Regula falsi with the Illinois modification, then bisection.
+fn bracket(g: impl Fn(f64) -> f64) -> Option<(f64, f64)> {
     let side = |h: f64| h <= 0.0;
     let (mut lo, mut hi) = (0.0, 1.0);
     let (mut g_lo, mut g_hi) = (g(lo), g(hi));
@@ -89,12 +96,12 @@ fn crossing(g: impl Fn(f64) -> f64) -> Option<f64> {
         }
         let g_s = g(s);
         if g_s == 0.0 {
-            // On the plate: the far side begins just after it (or before it, when the corner
+            // On the plate: the far side begins just after it (or at it, when the corner
             // comes from above: a corner on the plate counts as below).
             return Some(if side(g_lo) {
-                (s + 4.0 * f64::EPSILON).min(hi)
+                (s, (s + 4.0 * f64::EPSILON).min(hi))
             } else {
-                s
+                ((s - 4.0 * f64::EPSILON).max(lo), s)
             });
         }
         if side(g_s) == side(g_lo) {
@@ -111,7 +118,33 @@ fn crossing(g: impl Fn(f64) -> f64) -> Option<f64> {
             last_moved_lo = Some(false);
         }
     }
-    Some(hi)
+    Some((lo, hi))
+}
+
+/// The linear law's events: fraction of the coming step just BEFORE the first corner of
+/// `chains` (the chains below the plate before and after the step) changes side along the
+/// stepper's predicted path, or `None` when none does. Each submerged corner carries its own
+/// dashpot, whose force jumps by c_n times the corner's approach speed as it crosses, so the
+/// step must end on the old branch (its force at the step's end the old branch's limit) and
+/// the new branch start just past the crossing ([`branch_start`]'s peeks). Several corners
+/// crossing within one step are met one event at a time.
+pub fn locate_first<G: PlateGeometry, S: Stepper>(
+    geometry: &G,
+    stepper: &S,
+    chains: &[Corners],
+) -> Option<f64> {
+    let n = geometry.corner_count();
+    let height = |k: usize, s: f64| {
+        let q = stepper.path(s);
+        geometry.corner_height(k, q[1], q[2])
+    };
+    let first = chains
+        .iter()
+        .flat_map(|c| c.first as usize..(c.first + c.count) as usize)
+        .filter_map(|k| bracket(|s| height(k % n, s)))
+        .map(|(near, _)| near)
+        .fold(f64::INFINITY, f64::min);
+    first.is_finite().then(|| first.clamp(MIN_CUT, 1.0))
 }
 
 /// The start of a new branch of the contact law at the current state.
@@ -197,9 +230,33 @@ pub struct EventControl {
     /// Largest accepted local error in the centre's height (m): the height is driven by the
     /// normal force alone, whose fast changes are what needs finer steps.
     pub tolerance: f64,
+    /// Every corner crossing is an event, in the middle of a contact too, each step ending
+    /// just before it ([`locate_first`]): the linear law on a polygon, whose per-corner
+    /// dashpots make the force jump there. Otherwise (the area law, continuous at a crossing)
+    /// only touch and separation.
+    pub every_crossing: bool,
 }
 
 impl EventControl {
+    /// Fraction of the step just taken (from `snapshot`) at which it should end on an event,
+    /// given the corners below the plate at its end.
+    fn event_in_step<G: PlateGeometry, S: Stepper>(
+        &self,
+        geometry: &G,
+        snapshot: &S,
+        after: Option<Corners>,
+    ) -> Option<f64> {
+        match (self.corners, after) {
+            (before, after) if self.every_crossing && before != after => {
+                let chains: Vec<Corners> = before.into_iter().chain(after).collect();
+                locate_first(geometry, snapshot, &chains)
+            }
+            (None, Some(c)) => locate(geometry, snapshot, c, true),
+            (Some(c), None) => locate(geometry, snapshot, c, false),
+            _ => None,
+        }
+    }
+
     /// Takes one step (retrying shorter ones as needed) and restarts on a new branch when it
     /// ends on an event.
     pub fn step<G: PlateGeometry, S: Stepper>(
@@ -213,32 +270,29 @@ impl EventControl {
             let mut forces = stepper.step(contact, self.h, inv_mass);
             let mut h = self.h;
             // A touch or a separation inside the step: redo it, shortened to end just past.
-            // (Corners crossing while the contact goes on change the force's curvature only;
-            // locating them too cost up to 40 % on fine polygons, whose crossings come every
-            // few steps, and bought nothing measurable; sharp ones are left to the error
-            // control.)
-            let after = corners(&forces.overlap);
+            // (Under the area law corners crossing while the contact goes on change the
+            // force's curvature only; locating them too cost up to 40 % on fine polygons,
+            // whose crossings come every few steps, and bought nothing measurable; sharp ones
+            // are left to the error control. Under the linear law every crossing is a jump of
+            // the force and is located: `every_crossing`.)
+            let (before, after) = (self.corners, corners(&forces.overlap));
             let mut event = false;
-            let change = match (self.corners, after) {
-                (None, Some(c)) => Some((c, true)),
-                (Some(c), None) => Some((c, false)),
-                _ => None,
-            };
-            if let Some((chain, touch)) = change {
-                if let Some(s) = locate(&contact.geometry, &snapshot, chain, touch) {
-                    (*stepper, contact.spring) = (snapshot.clone(), spring.clone());
-                    h = s * self.h;
-                    stepper.resize(h);
-                    forces = stepper.step(contact, h, inv_mass);
-                    event = true;
-                }
+            if let Some(s) = self.event_in_step(&contact.geometry, &snapshot, after) {
+                (*stepper, contact.spring) = (snapshot.clone(), spring.clone());
+                h = s * self.h;
+                stepper.resize(h);
+                forces = stepper.step(contact, h, inv_mass);
+                event = true;
             }
             self.corners = after;
             let too_large = stepper
                 .local_error()
                 .is_some_and(|e| e[1].abs() > self.tolerance);
             if too_large && self.h > MIN_STEP * self.dt {
-                (*stepper, contact.spring) = (snapshot, spring);
+                // The retry starts where this attempt did, below the plate the same corners:
+                // with the chain at the attempt's end a crossing inside the shorter retry
+                // would go unseen.
+                (*stepper, contact.spring, self.corners) = (snapshot, spring, before);
                 self.h *= 0.5;
                 stepper.resize(self.h);
                 continue;
