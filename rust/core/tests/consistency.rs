@@ -20,24 +20,12 @@ use restitution_core::{
 const V: f64 = 0.0357;
 const R: f64 = 0.01;
 
-/// A random convex 7-gon (points on an ellipse at sorted, seeded angles), circumradius ~R.
-fn random_convex(n: usize, seed: u64) -> Shape {
-    let mut s = seed;
-    let mut next = || {
-        s = s
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (s >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let mut ang: Vec<f64> = (0..n)
-        .map(|_| next() * 2.0 * std::f64::consts::PI)
-        .collect();
-    ang.sort_by(f64::total_cmp);
-    let pts: Vec<[f64; 2]> = ang
-        .iter()
-        .map(|a| [R * a.cos(), 0.6 * R * a.sin()])
-        .collect();
-    Shape::convex_polygon(&pts).unwrap()
+/// The random convex 7-gon of the engine's representative shapes (seed 7), circumradius ~R.
+fn random_convex_7gon() -> Shape {
+    Shape::representatives(R, 7)
+        .into_iter()
+        .find_map(|(name, shape)| (name == "convex 7-gon").then_some(shape))
+        .expect("the representatives include a convex 7-gon")
 }
 
 /// The integrator's default step, or its stability bound where that is smaller.
@@ -76,7 +64,7 @@ fn measure_linear_polygons() {
     let shapes: Vec<(&str, Shape, f64)> = vec![
         ("square face", Shape::regular_polygon(R, 4).unwrap(), 45.0),
         ("triangle face", Shape::regular_polygon(R, 3).unwrap(), 90.0),
-        ("convex 7-gon", random_convex(7, 7), 0.0),
+        ("convex 7-gon", random_convex_7gon(), 0.0),
         ("12-gon", Shape::regular_polygon(R, 12).unwrap(), 0.0),
     ];
     for integrator in [Integrator::Gear5, Integrator::Verlet, Integrator::Reference] {

@@ -117,6 +117,10 @@ impl Reference<'_> {
     }
 }
 
+/// Shortest stick phase, in units of the estimated contact time, that counts for
+/// `slip_events` (see `Run::take`).
+const MIN_STICK: f64 = 1e-6;
+
 /// Consecutive zero-length pieces after which a step ignores its events (see `first_switch`).
 const MAX_ZERO_PIECES: u32 = 64;
 
@@ -238,7 +242,7 @@ struct Limits {
     /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
     /// out.
     max_steps: u64,
-    /// Pieces shorter than this are negligible (for chattering and for slip counting).
+    /// Pieces shorter than this are negligible (for chattering).
     tiny: f64,
     /// The polygon's corners (0 for a disc or sphere).
     n_corners: usize,
@@ -482,7 +486,8 @@ impl<'a, 't> Run<'a, 't> {
             // ~1e-9 t_c just after touch (the damping's rate, like t^(-1/2), opens the Coulomb
             // cone faster than the spring loads; seen once steps are searched inside) is no
             // micro-slip.
-            self.tally.stuck |= self.mode.tan == Tan::Stick && h_taken >= 1e-6 * self.lim.t_est;
+            self.tally.stuck |=
+                self.mode.tan == Tan::Stick && h_taken >= MIN_STICK * self.lim.t_est;
             // The deepest point inside the step (where the depth stops growing).
             let frac = h_taken / h;
             track_extremes(&self.ode, &self.mode, step, frac, &mut self.tally, &self.e1);
