@@ -278,9 +278,8 @@ struct Run<'a, 't> {
     hold_tangential: bool,
     /// The accepted steps' local error estimates (sums of squares), for `err_est`.
     err_acc: State,
-    /// The first step of a contact starts at a point where the disc's force is not smooth.
-    fresh_touch: bool,
-    /// Steps taken since the last touch: the first few still see the force's root singularity.
+    /// Steps taken since the last touch: the first starts at a point where the disc's force is
+    /// not smooth, and the first few still see its root singularity.
     since_touch: u32,
 }
 
@@ -337,7 +336,6 @@ impl<'a, 't> Run<'a, 't> {
             chatter_c: 0,
             hold_tangential: false,
             err_acc: [0.0; NS],
-            fresh_touch: true,
             since_touch: 0,
         }
     }
@@ -366,7 +364,7 @@ impl<'a, 't> Run<'a, 't> {
         let mut h = self.h.min(lim.h_max).min(self.ode.singular_cap(
             &self.mode,
             s,
-            self.fresh_touch,
+            self.since_touch == 0,
             lim.t_est,
         ));
         if lim.n_corners > 0 && s[OM] != 0.0 {
@@ -477,7 +475,6 @@ impl<'a, 't> Run<'a, 't> {
         self.hold_tangential = false;
         self.count_chatter(event, h_taken);
         if h_taken > 0.0 {
-            self.fresh_touch = false;
             self.since_touch += 1;
             self.steps += 1;
             self.zero_pieces = 0;
@@ -498,7 +495,6 @@ impl<'a, 't> Run<'a, 't> {
         self.s = s_new;
         self.end_clip_hold();
         if let Some(ev) = event {
-            self.fresh_touch |= ev == Event::Touch;
             if ev == Event::Touch {
                 self.since_touch = 0;
             }
