@@ -14,7 +14,7 @@ use crate::model::{Initial, Integrator, Model, NormalLaw, Scene};
 use std::f64::consts::PI;
 
 pub mod budget;
-mod flight;
+pub(crate) mod flight;
 pub mod record;
 
 pub use budget::{

@@ -12,6 +12,7 @@ use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
+use crate::impact::flight;
 use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
 use crate::law::NormalForce;
 use crate::model::{Initial, Model};
@@ -214,7 +215,7 @@ pub(crate) fn integrate(
 ) -> Result<Record> {
     let mut run = Run::new(model, init, depth_est, opts, trace);
     let stop = loop {
-        if run.cleared() {
+        if run.cleared() || (run.mode.touch == Touch::Off && run.fly()) {
             break StopReason::Separated;
         }
         cancel.poll(run.attempts)?;
@@ -234,7 +235,8 @@ struct Limits {
     h_max: f64,
     /// The estimated contact time.
     t_est: f64,
-    /// Stop once this much time has passed ([`TIMEOUT_CONTACT_TIMES`] contact times).
+    /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
+    /// free flight is jumped over and does not count, as for the fixed steps).
     t_end: f64,
     /// The step budget (attempts, rejected steps included): steps may be much shorter than
     /// h_max while a turning polygon brings corner after corner to the plate (counted in
@@ -351,11 +353,46 @@ impl<'a, 't> Run<'a, 't> {
     fn budget_spent(&self) -> Option<StopReason> {
         if self.attempts >= self.lim.max_steps {
             Some(StopReason::StepBudget)
-        } else if self.t >= self.lim.t_end {
+        } else if self.contact_time() >= self.lim.t_end {
             Some(StopReason::ContactTimeBudget)
         } else {
             None
         }
+    }
+
+    /// The time spent in contact so far, the ongoing contact included.
+    fn contact_time(&self) -> f64 {
+        let ongoing = if self.mode.touch == Touch::Off {
+            0.0
+        } else {
+            self.t - self.tally.contact_start
+        };
+        self.tally.contact_time + ongoing
+    }
+
+    /// In free flight: jumps over it by conservative advancement (see [`flight`]), each
+    /// advance counted as a step; true when no part of the particle can reach the plate
+    /// again. Stepped instead, a polygon flung round by a stiff spring could spend its whole
+    /// budget flying before its next corner came down.
+    fn fly(&mut self) -> bool {
+        let (s, shape, r) = (self.s, &self.ode.model.scene.shape, self.ode.model.r);
+        let v = [s[VX], s[VY], s[OM]];
+        let gap = |t: f64| s[Y] + v[1] * t - shape.touch_height(s[PHI] + v[2] * t);
+        let left = self.lim.max_steps.saturating_sub(self.attempts);
+        let (jump, advances) = flight::jump(gap, s[Y], &v, r, self.lim.h_max, left);
+        let (t_jump, done) = match jump {
+            flight::Jump::Stay => return false,
+            flight::Jump::To(t) => (t, false),
+            flight::Jump::Clear(t) => (t, true),
+        };
+        for (q, dq) in [(X, VX), (Y, VY), (PHI, OM)] {
+            self.s[q] += self.s[dq] * t_jump;
+        }
+        self.t += t_jump;
+        self.steps += advances;
+        self.attempts += advances;
+        self.refresh(t_jump, None);
+        done
     }
 
     /// The step to try: the next one, within the largest and the caps of the state.
