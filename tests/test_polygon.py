@@ -59,6 +59,21 @@ def test_overlap_is_a_validated_scene_field() -> None:
     assert rs.Scene.paper(overlap="parry").overlap == "parry"
 
 
+def test_verlet_is_refused_for_the_linear_law_on_a_polygon_naming_integrator() -> None:
+    # Each corner's dashpot force jumps as the corner crosses the plate; only Gear-5 and the
+    # adaptive path locate the jumps (docs/consistency.md).
+    square = rs.RegularPolygon(r=R, n=4, phi0_deg=45.0)
+    with pytest.raises(ValueError, match="`integrator`.*gear5.*adaptive") as err:
+        rs.Scene(shape=square, normal_law="linear", kn=1e5, integrator="verlet")
+    assert err.value.parameter == "integrator"
+    for integrator in ("gear5", "adaptive"):
+        scene = rs.Scene(shape=square, normal_law="linear", kn=1e5, integrator=integrator)
+        assert math.isfinite(rs.simulate(scene, 40.0).e_n)
+    # Verlet keeps the linear law on the disc and the area law on polygons.
+    rs.Scene(shape=rs.Disc(r=R), normal_law="linear", kn=1e5, integrator="verlet")
+    rs.Scene(shape=square, integrator="verlet")
+
+
 @pytest.mark.parametrize("shape", [
     rs.RegularPolygon(r=R, n=120, phi0_deg=0.0),
     rs.RegularPolygon(r=R, n=4, phi0_deg=45.0),     # face first: an edge parallel to the plate

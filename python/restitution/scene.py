@@ -54,7 +54,7 @@ class Scene:
     v: float = 0.0357
     """Impact speed (m/s)."""
     integrator: str = "gear5"
-    """"gear5" (the study's), "verlet" (cheap), "adaptive" (Dormand-Prince 5(4) with the contact's
+    """"gear5" (the study's), "verlet" (cheap; not with the linear law on a polygon), "adaptive" (Dormand-Prince 5(4) with the contact's
     switches located, to the accuracy ``tol``) or "reference" (the adaptive path at its tightest
     setting: accurate to about 1e-10)."""
     dt_factor: float = 0.01

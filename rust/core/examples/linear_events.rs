@@ -1,4 +1,4 @@
-//! The linear law on polygons with the fixed steps (Gear-5, Verlet): worst energy residual
+//! The linear law on polygons with Gear-5 (Verlet is refused for it): worst energy residual
 //! (damped), energy gain (elastic), mirror and 360 / n rotation differences, and the cost per
 //! step, over a grid of impacts. With `dump` as first argument, prints the records of the
 //! area law and the disc instead (to compare two builds bit for bit).
@@ -140,7 +140,8 @@ fn main() {
         return;
     }
     let law = NormalLaw::Linear { kn: 0.0, cn: 0.0 };
-    for integrator in [Integrator::Gear5, Integrator::Verlet] {
+    {
+        let integrator = Integrator::Gear5;
         for (name, shape) in shapes().into_iter().filter(|(n, _)| n != "disc") {
             let n_reg: Option<usize> = name.strip_suffix("-gon").and_then(|n| n.parse().ok());
             let (mut res, mut gain, mut mir, mut rot) = (0.0f64, f64::MIN, 0.0f64, 0.0f64);

@@ -201,12 +201,16 @@ fn documented_gain_bound(scene: &Scene) -> f64 {
 /// The largest |energy_residual| of a damped or frictional impact at the default step
 /// (docs/model.md: 1e-6). The linear law's dashpot force jumps at touch (c_n v_n at zero depth),
 /// which the fixed steps' work quadrature meets to first order: measured up to 1.23e-6 on the
-/// disc, above docs/model.md's 1e-6 (open, docs/consistency.md).
+/// disc. On a polygon Gear-5 locates every corner crossing, but with friction the stick/slip
+/// switches between them are not located: measured up to 5.8e-6 (5-gon, mu 10, falling
+/// 4.3e-6, 9.3e-7, 1.6e-7 per halving of the step; docs/consistency.md).
 fn documented_residual_bound(scene: &Scene) -> f64 {
+    let polygon = matches!(scene.shape, Shape::Polygon(_));
     match (scene.integrator, scene.normal_law) {
         (Integrator::Reference | Integrator::Adaptive, _)
         | (_, NormalLaw::Area)
         | (_, NormalLaw::Hertz { .. }) => 1e-6,
+        (_, NormalLaw::Linear { .. }) if polygon && scene.mu > 0.0 => 1e-5,
         (_, NormalLaw::Linear { .. }) => 2e-6,
     }
 }
@@ -396,7 +400,6 @@ struct Tally {
     failures: Vec<String>,
     runs: usize,
     refused: std::collections::BTreeSet<String>,
-    timed_out: Vec<String>,
     failure_counts: std::collections::BTreeMap<String, usize>,
 }
 
@@ -447,14 +450,9 @@ fn check_impact(
     };
     t.runs += 1;
     if rec.timed_out {
-        // The reference budgets the whole impact, free flight included, where the fixed
-        // steps budget contact only: a polygon flung round by a stiff linear spring may fly
-        // longer than 100 contact times before its next corner comes down (open).
-        if scene.integrator.is_adaptive() {
-            t.timed_out.push(what);
-            return;
-        }
-        return t.fail(format!("{what}: timed out"));
+        // Every integrator jumps over free flight and budgets contact time only: an accepted
+        // impact must end.
+        return t.fail(format!("{what}: timed out ({:?})", rec.stop));
     }
     let gain = rec.energy_out / rec.energy_in - 1.0;
     let elastic = scene.gamma == 0.0
@@ -633,13 +631,6 @@ fn report(t: &Tally) {
     for (k, g) in &t.worst_gain {
         println!("  {k:<40} {g:+.2e}");
     }
-    println!(
-        "{} reference impacts timed out in flight:",
-        t.timed_out.len()
-    );
-    for w in &t.timed_out {
-        println!("  {w}");
-    }
     println!("failures by combination and check:");
     for (k, c) in &t.failure_counts {
         println!("  {c:>5}  {k}");
@@ -647,29 +638,6 @@ fn report(t: &Tally) {
     for f in &t.failures {
         println!("FAIL {f}");
     }
-}
-
-/// Failures known and open (docs/consistency.md), reported but not failing the quick matrix:
-/// the linear law on a polygon with Verlet, and Gear-5's energy audit with friction. Each
-/// corner's dashpot force jumps when the corner crosses the plate (c_n times its approach speed
-/// at zero depth). Gear-5 locates every crossing: its symmetry and scaling checks must pass,
-/// and its audit closes to 2e-6 without friction; with stick/slip switches on top of the
-/// restarts it closes to 4.3e-6 (5-gon, mu 10). Verlet keeps plain steps (its trapezoid audit
-/// leaves an O(h^2) term at every located jump, up to 7e-5): audit to ~5e-5, mirrored or turned
-/// tumbling polygons up to ~2e-3 apart.
-fn known_open(failure: &str) -> bool {
-    let linear_polygon = failure.contains(" linear ") && !failure.starts_with("disc");
-    let check = [
-        "energy residual",
-        "mirror image",
-        "rotated by",
-        "groups differ",
-    ];
-    let verlet = failure.contains(" verlet ") && check.iter().any(|c| failure.contains(c));
-    let frictional_gear5 = failure.contains(" gear5 ")
-        && !failure.contains(" mu 0 ")
-        && failure.contains("energy residual");
-    linear_polygon && (verlet || frictional_gear5)
 }
 
 #[test]
@@ -685,7 +653,7 @@ fn quick_matrix() {
     // Only refusals of a combination, naming the choice at fault (docs/consistency.md lists
     // them: parry on a disc or sphere, sphere inertia on a polygon, the Hertz law off a sphere
     // and the other laws on one, Mindlin without Hertz, Hertz with the linear spring and no
-    // kt), never a refusal of a value.
+    // kt, Verlet with the linear law on a polygon), never a refusal of a value.
     for r in &t.refused {
         assert!(
             [
@@ -693,24 +661,19 @@ fn quick_matrix() {
                 "`inertia`",
                 "`normal_law`",
                 "`tangential`",
-                "`kt`"
+                "`kt`",
+                "`integrator`"
             ]
             .iter()
             .any(|name| r.contains(name)),
             "unexpected refusal {r}"
         );
     }
-    let open = t.failures.iter().filter(|f| known_open(f)).count();
-    println!("{open} failures known and open (linear law, polygon, fixed step)");
-    let new: Vec<&String> = t.failures.iter().filter(|f| !known_open(f)).collect();
     assert!(
-        t.failure_counts.values().sum::<usize>() <= 40,
-        "more failures than kept"
-    );
-    assert!(
-        new.is_empty(),
-        "{} failures beyond the known open ones: {new:#?}",
-        new.len()
+        t.failures.is_empty(),
+        "{} failed checks: {:#?}",
+        t.failures.len(),
+        t.failures
     );
 }
 

@@ -4,7 +4,7 @@
 
 use restitution_core::{
     simulate, simulate_reference, simulate_reference_with_trace, Initial, Integrator, NormalLaw,
-    Record, ReferenceOptions, Scene, Shape,
+    Model, Record, ReferenceOptions, Scene, Shape,
 };
 
 const V: f64 = 0.0357;
@@ -117,6 +117,17 @@ fn gear5_and_verlet_converge_to_the_reference() {
     for (name, scene, init) in hard_cases() {
         let r = reference(&scene, &init);
         for integrator in [Integrator::Gear5, Integrator::Verlet] {
+            let linear_polygon = matches!(scene.normal_law, NormalLaw::Linear { .. })
+                && matches!(scene.shape, Shape::Polygon(_));
+            if integrator == Integrator::Verlet && linear_polygon {
+                // Refused up front (it cannot locate the corner forces' jumps).
+                let refused = Model::new(&Scene {
+                    integrator,
+                    ..scene.clone()
+                });
+                assert!(refused.is_err_and(|e| e.to_string().contains("`integrator`")));
+                continue;
+            }
             let errors: Vec<f64> = [0.006, 0.0015, 0.000375]
                 .iter()
                 .map(|&dt_factor| {
