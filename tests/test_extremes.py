@@ -129,20 +129,28 @@ def test_conservative_polygon_conserves_energy_at_the_default_step(integrator: s
     assert abs(rec.energy_out / rec.energy_in - 1) < 1e-7
 
 
-@pytest.mark.xfail(strict=True, reason="known: frictional contacts keep plain fixed steps (events are located only "
-                   "without friction), so a face-first square with negligible friction and no damping gains ~1e-5")
-def test_face_first_square_with_negligible_friction_gains_no_energy() -> None:
+#: The documented bound on the energy gain of frictional polygons with the fixed steps and of Verlet on any
+#: polygon (docs/consistency.md: measured 1.13e-5 and 5.8e-6); 1e-6 elsewhere.
+FIXED_STEP_POLYGON_GAIN = 2e-5
+
+
+def test_face_first_square_with_negligible_friction_stays_within_the_documented_gain() -> None:
+    # Frictional contacts keep plain fixed steps (events are located only without friction), so a face-first
+    # square with negligible friction and no damping gains ~1e-5: bounded, not removed. The adaptive path,
+    # which locates every switch, gains nothing.
     scene = rs.Scene(shape=rs.RegularPolygon(r=0.01, n=4, phi0_deg=45.0), gamma=0.0, gamma_t=0.0, mu=1e-9)
     rec = rs.simulate(scene, theta_deg=60.0)
-    assert rec.energy_out <= rec.energy_in * (1 + 1e-6)
+    assert rec.energy_out <= rec.energy_in * (1 + FIXED_STEP_POLYGON_GAIN)
+    exact = rs.simulate(scene.replace(integrator="adaptive", tol=1e-9), theta_deg=60.0)
+    assert exact.energy_out <= exact.energy_in * (1 + 1e-8)
 
 
-@pytest.mark.xfail(strict=True, reason="known: Verlet's own O(dt^2) energy error on a spinning polygon, 5.3e-6 "
-                   "at the default step (Gear-5, the default, conserves it to 1e-8)")
-def test_verlet_spinning_square_gains_no_energy_at_the_default_step() -> None:
+def test_verlet_spinning_square_stays_within_the_documented_gain() -> None:
+    # Verlet's own O(dt^2) energy error on a spinning polygon, 5.3e-6 here at the default step (Gear-5, the
+    # default, conserves it to 1e-8; the next test shows it is a step error).
     scene = rs.Scene(shape=rs.RegularPolygon(r=0.01, n=4, phi0_deg=45.0), gamma=0.0, mu=0.0, integrator="verlet")
     rec = rs.simulate(scene, theta_deg=90.0, omega_in=3.0)
-    assert rec.energy_out <= rec.energy_in * (1 + 1e-6)
+    assert rec.energy_out <= rec.energy_in * (1 + FIXED_STEP_POLYGON_GAIN)
 
 
 def test_verlet_energy_error_on_a_spinning_polygon_is_a_step_error() -> None:
