@@ -105,13 +105,14 @@ def test_record_fields_follow_their_definitions(disc_scene: rs.Scene) -> None:
     assert rec.energy_residual == pytest.approx(
         (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in, abs=1e-15)
     assert 0.0 < rec.max_depth < s.r / 2 and rec.max_area > 0.0
-    assert rec.contact_time > 0.0 and rec.steps > 100
+    assert rec.contact_time > 0.0 and rec.steps > 10
     assert set(rec.as_dict()) == {f for f in rec.__dataclass_fields__ if f != "trace"}
 
 
 def test_sphere_inertia_changes_the_moment_only() -> None:
-    # Same mass and contact law: the normal impact is identical, the energy of a spin is 0.4/0.5 of it.
-    disc, sphere = rs.Scene(), rs.Scene(inertia="sphere")
+    # Same mass and contact law: the normal impact is identical (bit for bit at a fixed step), the energy of
+    # a spin is 0.4/0.5 of it.
+    disc, sphere = rs.Scene(integrator="gear5"), rs.Scene(integrator="gear5", inertia="sphere")
     a = rs.simulate(disc, theta_deg=90.0, omega_in=3.0)
     b = rs.simulate(sphere, theta_deg=90.0, omega_in=3.0)
     assert a.e_n == b.e_n
@@ -189,8 +190,9 @@ def test_paper_preset_head_on_e_n_is_the_calibration_target(scene: rs.Scene) -> 
 
 
 def test_e_n_barely_depends_on_mu_and_is_a_bit_higher_at_mu_0() -> None:
-    # Fig. 2 of the study: e_N independent of mu > 0, a bit higher at mu = 0.
-    e = {mu: rs.simulate(rs.Scene(mu=mu), theta_deg=40.0).e_n for mu in (0.0, 0.3, 1.0)}
+    # Fig. 2 of the study: e_N independent of mu > 0, a bit higher at mu = 0. The differences are ~1e-13
+    # (the reference), so the claim needs an error below 1e-9: tol 1e-11.
+    e = {mu: rs.simulate(rs.Scene(mu=mu, tol=1e-11), theta_deg=40.0).e_n for mu in (0.0, 0.3, 1.0)}
     assert abs(e[0.3] - e[1.0]) < 0.01
     assert e[0.0] >= e[0.3] - 1e-9
 
@@ -199,7 +201,7 @@ def test_e_n_barely_depends_on_mu_and_is_a_bit_higher_at_mu_0() -> None:
 
 @pytest.fixture(scope="module")
 def traced() -> tuple[rs.Scene, float, float, rs.Record]:
-    s = rs.Scene(mu=0.3)
+    s = rs.Scene(mu=0.3, integrator="gear5", dt_factor=0.01)  # fixed steps: one trace row per dt
     theta, omega_in = 40.0, 1.0
     return s, theta, omega_in, rs.simulate(s, theta_deg=theta, omega_in=omega_in, trace=True)
 
@@ -234,7 +236,7 @@ def test_trace_ends_with_the_records_velocities(traced) -> None:
     last = rec.trace.row(-1, named=True)
     assert (last["vx"], last["vy"], last["omega"]) == (rec.vx_out, rec.vy_out, rec.omega_out)
     # Asking for the trace does not change a single number of the record.
-    plain = rs.simulate(rs.Scene(mu=0.3), theta_deg=theta, omega_in=omega_in)
+    plain = rs.simulate(rs.Scene(mu=0.3, integrator="gear5", dt_factor=0.01), theta_deg=theta, omega_in=omega_in)
     assert plain.as_dict() == rec.as_dict()
 
 

@@ -115,11 +115,17 @@ pub(crate) fn check_resolution(model: &Model, init: &Initial, depth_est: f64) ->
     Ok(())
 }
 
-/// Refuses a fixed-step impact whose contact needs more than [`MAX_STEPS_PER_CONTACT`] steps.
+/// Refuses an impact whose contact needs more than [`MAX_STEPS_PER_CONTACT`] steps (for the
+/// adaptive path and the reference: at a largest step too small for the contact).
 pub(crate) fn check_contact_steps(model: &Model, init: &Initial, depth_est: f64) -> Result<()> {
     let n = contact_steps(model, init, depth_est);
     if n > MAX_STEPS_PER_CONTACT {
         let t_ref = model.t_ref;
+        let cure = if model.scene.integrator.is_adaptive() {
+            "raise dt_factor (here only the largest step: the tolerance sets the accuracy)"
+        } else {
+            "raise dt_factor, theta_deg or v, lower E, or use integrator \"adaptive\""
+        };
         return Err(Error::invalid(
             "dt_factor",
             model.scene.dt_factor,
@@ -127,7 +133,7 @@ pub(crate) fn check_contact_steps(model: &Model, init: &Initial, depth_est: f64)
                 "large enough that a contact takes at most {MAX_STEPS_PER_CONTACT:e} steps: this \
                  one lasts ~{:.1e} t_ref (t_ref = {t_ref:e} s), ~{n:.1e} steps of dt_factor \
                  t_ref (a slow contact on a stiff material: its force grows slowly with depth); \
-                 raise dt_factor, theta_deg or v, lower E, or use integrator \"reference\"",
+                 {cure}",
                 n * model.scene.dt_factor,
             ),
         ));

@@ -102,6 +102,7 @@ fn run(
     let scene = &model.scene;
     let depth_est = estimate_max_depth(model, init)?;
     budget::check_resolution(model, init, depth_est)?;
+    budget::check_contact_steps(model, init, depth_est)?;
     if scene.integrator.is_adaptive() {
         return crate::integrate::adaptive::integrate(
             model,
@@ -160,7 +161,6 @@ fn run_fixed(
     cancel: &Cancel,
 ) -> Result<Record> {
     let scene = &model.scene;
-    budget::check_contact_steps(model, init, depth_est)?;
     let limits = Limits {
         max_steps: step_budget(model, init, depth_est),
         contact_time: TIMEOUT_CONTACT_TIMES * PI * depth_est / init.vy.abs(),
