@@ -19,7 +19,7 @@ def test_adaptive_meets_its_tolerance_against_a_tight_run():
 
 def test_err_est_is_null_unless_asked_for_fixed_steps():
     assert rs.simulate(rs.Scene(integrator="gear5"), theta_deg=30.0).err_est is None
-    assert rs.simulate(rs.Scene(), theta_deg=30.0).err_est is not None  # the default is the adaptive path
+    assert rs.simulate(rs.Scene(integrator="adaptive"), theta_deg=30.0).err_est is not None
     rec = rs.simulate(rs.Scene(error_estimate=True), theta_deg=30.0)
     ref = rs.simulate(rs.Scene(integrator="reference", dt_factor=0.2), theta_deg=30.0)
     assert rec.err_est is not None and rec.err_est >= abs(rec.e_t - ref.e_t)

@@ -68,9 +68,9 @@ BAD = [
     ("[axes]\ntheta_deg = 30\nn = [0, 2]", "axes.n: case 1: require `n` an integer >= 3, or 0 for an exact disc (found 2.0)"),
     ("[axes]\ntheta_deg = 30\nn = [0.5]", "axes.n: require integers: 0 (exact disc) or >= 3 (found 0.5)"),
     ("[axes]\ntheta_deg = 30\nmu = []", "axes.mu: require at least one value"),
-    ("[axes]\ntheta_deg = 30\ndt_factor = [0.6]\n[scene]\nintegrator = \"gear5\"",
+    ("[axes]\ntheta_deg = 30\ndt_factor = [0.6]",
      f"axes.dt_factor: case 0: require `dt_factor` in (0, {rs.MAX_DT_FACTOR['gear5']}] for the gear5 integrator"),
-    ("[axes]\ntheta_deg = 30\ndt_factor = [20]",
+    ("[axes]\ntheta_deg = 30\ndt_factor = [20]\n[scene]\nintegrator = \"adaptive\"",
      "axes.dt_factor: case 0: require `dt_factor` in (0, 10] for the adaptive integrator"),
     ("[axes]\ntheta_deg = { start = 4, stop = 1, step = 1 }", "axes.theta_deg.stop: require stop >= start (found start 4.0, stop 1.0)"),
     ("[axes]\ntheta_deg = { start = 4, stop = 10, step = -1 }", "axes.theta_deg.step: require step > 0 (found -1.0)"),
@@ -134,7 +134,7 @@ def _candidates(name: str, value: object) -> list[object]:
     if isinstance(value, str):
         return [alt for alt in _engine.CHOICES[name] if alt != value]
     if value is None:
-        return [0.3, 0.5, 1.0, 1e3, 0.5 * rs.Scene().E]
+        return [0.3, 0.5, 1.0, 1e3, 0.5 * rs.Scene().E, 0.005]
     if isinstance(value, bool):
         return [not value]
     if isinstance(value, int):

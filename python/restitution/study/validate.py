@@ -47,9 +47,6 @@ def sphere_scene(material: str, r: float, cor: float, mu: float, plate: tuple[fl
     """A Hertz-Mindlin sphere of one of :data:`MATERIALS` (rigid plate unless ``plate``)."""
     e, nu, rho = MATERIALS[material]
     plate_e, plate_nu = plate if plate is not None else (None, None)
-    # Gear-5 at its default step, as the validation reports (and test 2 reads the peak force off the
-    # trace, which needs the fixed step's dense samples).
-    changes.setdefault("integrator", "gear5")
     return Scene(shape=Sphere(r=r), normal_law="hertz", E=e, nu=nu, rho=rho, cor=cor, mu=mu,
                  plate_E=plate_e, plate_nu=plate_nu, **changes)
 
