@@ -3,8 +3,8 @@
 //! converge to as dt shrinks.
 
 use restitution_core::{
-    simulate, simulate_reference, simulate_reference_with_trace, Initial, Integrator, NormalLaw,
-    Model, Record, ReferenceOptions, Scene, Shape,
+    simulate, simulate_reference, simulate_reference_with_trace, Initial, Integrator, Model,
+    NormalLaw, Record, ReferenceOptions, Scene, Shape,
 };
 
 const V: f64 = 0.0357;
