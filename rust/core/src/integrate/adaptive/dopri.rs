@@ -114,6 +114,9 @@ impl Reference<'_> {
         k[0] = *k1;
         let mut pull = None;
         let mut end = Eval::default();
+        // The 7th stage is evaluated at the 5th-order solution itself (FSAL): its stage state,
+        // formed with the weights A[6], is y1.
+        let mut y1 = *y0;
         for st in 1..7 {
             let mut yi = *y0;
             for i in 0..NS {
@@ -129,15 +132,7 @@ impl Reference<'_> {
                 pull = Some(C[st]);
             }
             end = e;
-        }
-        // The 7th stage is evaluated at the 5th-order solution itself (FSAL).
-        let mut y1 = *y0;
-        for i in 0..NS {
-            let mut acc = 0.0;
-            for j in 0..6 {
-                acc += A[6][j] * k[j][i];
-            }
-            y1[i] += h * acc;
+            y1 = yi;
         }
         let err_vec: State =
             std::array::from_fn(|i| h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>());

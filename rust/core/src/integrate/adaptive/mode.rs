@@ -9,6 +9,14 @@ use crate::geometry::Shape;
 use crate::law::carrying;
 
 impl Reference<'_> {
+    /// The overlap formula a contact starts with at centre height `y`, orientation `phi`.
+    pub(super) fn touch_mode(&self, y: f64, phi: f64) -> Touch {
+        match self.model.scene.shape {
+            Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
+            Shape::Polygon(_) => self.initial_run(y, phi),
+        }
+    }
+
     /// The corners below the plate when a polygon first touches: the lowest one and its
     /// neighbours that are not above the plate.
     pub(super) fn initial_run(&self, y: f64, phi: f64) -> Touch {
@@ -63,13 +71,9 @@ pub(super) fn apply(
     let (kt, _, ct) = model.spring(e.depth);
     match ev {
         Event::Touch => {
-            m.touch = match model.scene.shape {
-                Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
-                Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
-            };
+            m.touch = ode.touch_mode(s[Y], s[PHI]);
             m.clip_on = true;
             s[XI] = 0.0;
-            m.tan = Tan::None;
             m.tan = ode.initial_tan(m, s);
             tally.contacts += 1;
             tally.contact_start = t;

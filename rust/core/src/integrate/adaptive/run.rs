@@ -10,7 +10,6 @@ use super::{
 };
 use crate::cancel::Cancel;
 use crate::error::Result;
-use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::flight;
 use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
@@ -67,19 +66,25 @@ fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
 }
 
 impl Reference<'_> {
+    /// Whether the force in mode `m` has the disc's root singularities at touch and
+    /// separation: a disc or sphere in contact under the area or Hertz law (the linear law
+    /// is smooth there), with the clip on (in the clipped tail no force acts, so nothing is
+    /// singular at its end: halving towards separation there took 12 of a frictionless disc's
+    /// 47 steps).
+    fn singular_force(&self, m: &Mode) -> bool {
+        self.linear().is_none() && m.touch == Touch::Disc && m.clip_on
+    }
+
     /// The largest step near a point where a disc's force is not smooth (touch and
     /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
     /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
     /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
     /// first after touch, and towards separation the steps halve the time left until then.
-    /// Not once the clip is off: no force acts in the clipped tail, so nothing is singular at
-    /// its end (halving towards separation there took 12 of a frictionless disc's 47 steps).
-    fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, t_est: f64) -> f64 {
-        let smooth_law = self.linear().is_some();
-        if smooth_law || m.touch != Touch::Disc || !m.clip_on {
+    /// `h_sing` is that step (`Limits::h_singular`).
+    fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, h_sing: f64) -> f64 {
+        if !self.singular_force(m) {
             return f64::INFINITY;
         }
-        let h_sing = t_est * self.tol.powf(2.0 / 3.0);
         if fresh_touch {
             return h_sing;
         }
@@ -110,8 +115,7 @@ impl Reference<'_> {
         event: Option<Event>,
     ) -> State {
         let across = near_touch || event == Some(Event::Separate);
-        let forced = m.clip_on && m.touch == Touch::Disc;
-        if !across || h <= 0.0 || !forced || self.linear().is_some() {
+        if !across || h <= 0.0 || !self.singular_force(m) {
             return [0.0; NS];
         }
         let (half, _) = self.dp_step(m, s, k1, 0.5 * h);
@@ -238,6 +242,9 @@ struct Limits {
     h_max: f64,
     /// The estimated contact time.
     t_est: f64,
+    /// The largest step across a point where the disc's force is not smooth, t_est tol^(2/3)
+    /// (see `Reference::singular_cap`), fixed per impact.
+    h_singular: f64,
     /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
     /// free flight is jumped over and does not count, as for the fixed steps).
     t_end: f64,
@@ -304,12 +311,8 @@ impl<'a, 't> Run<'a, 't> {
         s[VX] = init.vx;
         s[VY] = init.vy;
         s[OM] = init.omega;
-        let touch = match shape {
-            Shape::Disc { .. } | Shape::Sphere { .. } => Touch::Disc,
-            Shape::Polygon(_) => ode.initial_run(s[Y], s[PHI]),
-        };
         let mut mode = Mode {
-            touch,
+            touch: ode.touch_mode(s[Y], s[PHI]),
             clip_on: true,
             clip_hold: false,
             tan: Tan::None,
@@ -405,7 +408,7 @@ impl<'a, 't> Run<'a, 't> {
             &self.mode,
             s,
             self.since_touch == 0,
-            lim.t_est,
+            lim.h_singular,
         ));
         if lim.n_corners > 0 && s[OM] != 0.0 {
             // A turning polygon brings corners to the plate: step finely enough (a quarter of
@@ -508,9 +511,6 @@ impl<'a, 't> Run<'a, 't> {
             // In quadrature: the local errors' signs vary along an impact (summed, their
             // absolute values overstated the error 15-fold at tol 1e-4 and 124-fold at 1e-10).
             self.err_acc[i] += (err_taken[i].abs() + singular[i]).powi(2);
-        }
-        if event.is_none() {
-            self.zero_pieces = 0;
         }
         self.hold_tangential = false;
         self.count_chatter(event, h_taken);
@@ -687,6 +687,7 @@ impl<'a> Reference<'a> {
         let lim = Limits {
             h_max,
             t_est,
+            h_singular: t_est * opts.tol.powf(2.0 / 3.0),
             t_end: TIMEOUT_CONTACT_TIMES * t_est,
             max_steps: budget_for(
                 model,
