@@ -18,7 +18,7 @@
 //! without any of this.
 
 use crate::geometry::{Corners, Overlap};
-use crate::integrate::Stepper;
+use crate::integrate::{roots, Stepper};
 use crate::law::{Contact, Dof, Forces, PlateGeometry};
 
 /// Length of the one-sided peeks, as a fraction of the step: short enough that the peeks stay
@@ -77,48 +77,18 @@ fn crossing(g: impl Fn(f64) -> f64) -> Option<f64> {
 
 /// The final bracket (near, far) of a change of side of `g` on [0, 1]: `near` still on the
 /// side of s = 0, `far` on the other, at most a few ulp apart; `None` when both ends lie on the
-/// same side. Regula falsi with the Illinois modification, then bisection.
+/// same side (a corner at height <= 0 is below).
 fn bracket(g: impl Fn(f64) -> f64) -> Option<(f64, f64)> {
-    let side = |h: f64| h <= 0.0;
-    let (mut lo, mut hi) = (0.0, 1.0);
-    let (mut g_lo, mut g_hi) = (g(lo), g(hi));
-    if side(g_lo) == side(g_hi) {
+    let (g_lo, g_hi) = (g(0.0), g(1.0));
+    if (g_lo > 0.0) == (g_hi > 0.0) {
         return None;
     }
-    let mut last_moved_lo = None;
-    for _ in 0..200 {
-        if hi - lo <= 4.0 * f64::EPSILON {
-            break;
-        }
-        let mut s = lo + g_lo / (g_lo - g_hi) * (hi - lo);
-        if !(s > lo && s < hi) {
-            s = 0.5 * (lo + hi);
-        }
-        let g_s = g(s);
-        if g_s == 0.0 {
-            // On the plate: the far side begins just after it (or at it, when the corner
-            // comes from above: a corner on the plate counts as below).
-            return Some(if side(g_lo) {
-                (s, (s + 4.0 * f64::EPSILON).min(hi))
-            } else {
-                ((s - 4.0 * f64::EPSILON).max(lo), s)
-            });
-        }
-        if side(g_s) == side(g_lo) {
-            (lo, g_lo) = (s, g_s);
-            if last_moved_lo == Some(true) {
-                g_hi *= 0.5;
-            }
-            last_moved_lo = Some(true);
-        } else {
-            (hi, g_hi) = (s, g_s);
-            if last_moved_lo == Some(false) {
-                g_lo *= 0.5;
-            }
-            last_moved_lo = Some(false);
-        }
-    }
-    Some((lo, hi))
+    Some(roots::bracket(
+        g,
+        (0.0, g_lo),
+        (1.0, g_hi),
+        4.0 * f64::EPSILON,
+    ))
 }
 
 /// The linear law's events: fraction of the coming step just BEFORE the first corner of

@@ -4,5 +4,6 @@
 pub mod adaptive;
 pub mod events;
 pub mod fixed_step;
+pub(crate) mod roots;
 
 pub use fixed_step::{Gear5, Stepper, Verlet};
