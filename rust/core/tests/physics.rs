@@ -1129,3 +1129,78 @@ fn stiffest_scenes_are_stable_at_the_dt_bound() {
         }
     }
 }
+
+/// The estimated largest depth (the energy balance without damping, solved by Newton's method
+/// in log depth) against its closed forms, from tiny to fast impacts: a linear spring,
+/// delta = v sqrt(m / k_n); Hertz, delta = (5 m v^2 / (4 k))^(2/5); and on the area law the
+/// first moment of the exact disc's segment about the plate, the integral of its area over the
+/// depth
+/// (so E / L times it equals the normal kinetic energy).
+#[test]
+fn estimated_depth_solves_the_energy_balance_in_closed_form() {
+    let r = 0.01;
+    for v in [1e-6, 1e-3, 0.0357, 1.0] {
+        let init = Initial::from_angle(v, 90.0, 0.0, 0.0);
+        let linear = Scene {
+            normal_law: NormalLaw::Linear { kn: 1e5, cn: 0.0 },
+            ..Scene::default()
+        };
+        let model = Model::new(&linear).unwrap();
+        let got = estimate_max_depth(&model, &init).unwrap();
+        let want = v * (model.mass / 1e5).sqrt();
+        assert!(
+            (got / want - 1.0).abs() < 1e-12,
+            "linear v {v}: {got:e} vs {want:e}"
+        );
+
+        let hertz = Scene {
+            shape: Shape::sphere(r).unwrap(),
+            normal_law: NormalLaw::Hertz {
+                nu: 0.3,
+                plate: None,
+                cor: 1.0,
+            },
+            ..Scene::default()
+        };
+        let model = Model::new(&hertz).unwrap();
+        let got = estimate_max_depth(&model, &init).unwrap();
+        let k = model.hertz.unwrap().k;
+        let want = (1.25 * model.mass * v * v / k).powf(0.4);
+        assert!(
+            (got / want - 1.0).abs() < 1e-12,
+            "hertz v {v}: {got:e} vs {want:e}"
+        );
+
+        let model = Model::new(&Scene::default()).unwrap();
+        let d = estimate_max_depth(&model, &init).unwrap();
+        let potential = Scene::default().e_modulus * segment_moment(r, d) / model.length;
+        let ke = 0.5 * model.mass * v * v;
+        assert!(
+            (potential / ke - 1.0).abs() < 1e-6,
+            "area v {v}: {potential:e} vs {ke:e}"
+        );
+    }
+}
+
+/// First moment about the plate of a circular segment of depth `d` (radius `r`): the integral
+/// of the segment's area A(s) = r^2 (x - sin x) / 2, x = 4 asin(sqrt(s / 2r)), over s in [0, d],
+/// with x - sin x by its series where it cancels, and s = d w^2 so that the integrand is
+/// smooth (composite Simpson, 2000 intervals: ~1e-14 relative).
+fn segment_moment(r: f64, d: f64) -> f64 {
+    let x_minus_sin = |x: f64| {
+        if x < 0.1 {
+            let x2 = x * x;
+            x * x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0)))
+        } else {
+            x - x.sin()
+        }
+    };
+    let area = |s: f64| 0.5 * r * r * x_minus_sin(4.0 * (s / (2.0 * r)).sqrt().asin());
+    let f = |w: f64| 2.0 * d * w * area(d * w * w);
+    let n = 2000;
+    let h = 1.0 / n as f64;
+    let inner: f64 = (1..n)
+        .map(|k| if k % 2 == 1 { 4.0 } else { 2.0 } * f(k as f64 * h))
+        .sum();
+    h / 3.0 * (f(0.0) + inner + f(1.0))
+}
