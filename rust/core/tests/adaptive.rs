@@ -252,3 +252,55 @@ fn fixed_step_error_estimate_bounds_the_error() {
         assert!(median <= 100.0, "{integrator:?}: median ratio {median}");
     }
 }
+
+/// The deepest point of an undamped, frictionless impact without spin is where the normal
+/// kinetic energy has all gone into the law's potential (the energy balance `estimate_max_depth`
+/// solves), and the largest overlap is the disc's segment at that depth, r^2 acos(1 - d / r)
+/// - (r - d) sqrt(2 r d - d^2): both found inside a step on the adaptive path, at any theta.
+/// A 12-gon falling head-on onto a corner does not turn either: its depth follows the same
+/// balance.
+#[test]
+fn largest_depth_and_area_of_an_undamped_disc_follow_the_energy_balance() {
+    use restitution_core::{estimate_max_depth, Model};
+    for theta in [10.0, 45.0, 90.0] {
+        for dt_factor in [0.3, 1.0, 5.0] {
+            let scene = Scene {
+                gamma: 0.0,
+                gamma_t: 0.0,
+                mu: 0.0,
+                integrator: Integrator::Adaptive,
+                tol: 1e-10,
+                dt_factor,
+                ..Scene::default()
+            };
+            let init = Initial::from_angle(V, theta, 0.0, 0.0);
+            let rec = simulate(&scene, &init).unwrap();
+            let d = estimate_max_depth(&Model::new(&scene).unwrap(), &init).unwrap();
+            let what = format!("theta {theta} dt_factor {dt_factor}");
+            assert!(
+                (rec.max_depth / d - 1.0).abs() < 1e-9,
+                "{what}: {} vs {d}",
+                rec.max_depth
+            );
+            let area = R * R * (1.0 - d / R).acos() - (R - d) * (2.0 * R * d - d * d).sqrt();
+            assert!(
+                (rec.max_area / area - 1.0).abs() < 1e-8,
+                "{what}: {} vs {area}",
+                rec.max_area
+            );
+
+            let polygon = Scene {
+                shape: Shape::regular_polygon(R, 12).unwrap(),
+                ..scene.clone()
+            };
+            let head_on = Initial::from_angle(V, 90.0, 0.0, 0.0);
+            let rec = simulate(&polygon, &head_on).unwrap();
+            let d = estimate_max_depth(&Model::new(&polygon).unwrap(), &head_on).unwrap();
+            assert!(
+                (rec.max_depth / d - 1.0).abs() < 1e-9,
+                "12-gon {what}: {} vs {d}",
+                rec.max_depth
+            );
+        }
+    }
+}

@@ -13,6 +13,7 @@ use crate::error::Result;
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::flight;
 use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::integrate::roots;
 use crate::law::NormalForce;
 use crate::model::{Initial, Model};
 use std::f64::consts::PI;
@@ -137,9 +138,9 @@ const MAX_ZERO_PIECES: u32 = 64;
 /// ~150 lengths of the first step.
 const SINGULAR_STEPS: u32 = 4;
 
-/// Updates the largest depth and area with their maxima inside the taken part of a step:
-/// where a parabola through three samples peaks inside the step, a golden-section search on
-/// the dense output finds the peak (the depth peaks where its rate changes sign).
+/// Updates the largest depth and area with their maxima inside the taken part of a step. A
+/// polygon's: where a parabola through three samples peaks inside the step, Brent's search on
+/// the dense output finds the peak; a disc's: see [`deepest_disc`].
 ///
 /// `start` is the evaluation at the step's start; at its end, a whole step reuses the last
 /// stage's.
@@ -151,8 +152,10 @@ fn track_extremes(
     tally: &mut Tally,
     start: &Eval,
 ) {
-    if m.touch == Touch::Off {
-        return;
+    match m.touch {
+        Touch::Off => return,
+        Touch::Disc => return deepest_disc(ode, step, frac, tally),
+        Touch::Poly { .. } => {}
     }
     let of = |e: &Eval| [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)];
     let sample = |th: f64| of(&ode.eval(m, &step.at(th)).1);
@@ -171,6 +174,37 @@ fn track_extremes(
     }
 }
 
+/// [`track_extremes`] for a disc or sphere, whose depth is r - y and whose overlap grows with
+/// it: both peak where v_y turns from falling to rising, located on the dense output without
+/// evaluating the law (sampling the law at mid-step for a peak cost an evaluation per step).
+fn deepest_disc(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
+    if step.y0[VY] > 0.0 || (frac == 1.0 && step.y1[VY] <= 0.0) {
+        return;
+    }
+    deepest_disc_inside(ode, step, frac, tally);
+}
+
+/// The part of [`deepest_disc`] for a step where v_y may turn (once per impact): kept out of
+/// line, it costs the other steps nothing.
+#[inline(never)]
+fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
+    let v_y = |th: f64| step.at(th)[VY];
+    let v_end = if frac == 1.0 { step.y1[VY] } else { v_y(frac) };
+    if v_end <= 0.0 {
+        return;
+    }
+    // Near its peak the depth moves like the square of the distance to it: a position to
+    // 1e-10 of the step leaves nothing of the depth.
+    let (_, th) = roots::bracket(v_y, (0.0, step.y0[VY]), (frac, v_end), 1e-10 * frac);
+    let s = step.at(th);
+    // The shape's own overlap (the same as the held mode's while in contact): calling the
+    // mode's here, out of line, cost the law's evaluation its inlining of it (10 % per step).
+    if let Some(o) = ode.model.scene.shape.overlap(s[Y], s[PHI]) {
+        tally.max_depth = tally.max_depth.max(o.depth);
+        tally.max_area = tally.max_area.max(o.area);
+    }
+}
+
 /// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
 /// frac; -inf otherwise (the ends are recorded as step ends).
 fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
@@ -184,31 +218,11 @@ fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
     if !(-0.1..=1.1).contains(&vertex) {
         return f64::NEG_INFINITY;
     }
-    let (mut a, mut b) = (0.0, frac);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fd) = (f(c), f(d));
-    // Near its peak the value moves like the square of the distance to it: a bracket of
-    // 1e-7 of the step leaves ~1e-14 of the value's change over the step, at round-off.
-    for _ in 0..80 {
-        if b - a <= 1e-7 * frac.max(1e-300) {
-            break;
-        }
-        if fc > fd {
-            b = d;
-            d = c;
-            fd = fc;
-            c = b - g * (b - a);
-            fc = f(c);
-        } else {
-            a = c;
-            c = d;
-            fc = fd;
-            d = a + g * (b - a);
-            fd = f(d);
-        }
-    }
-    fc.max(fd).max(f0).max(f1)
+    // Near its peak the value moves like the square of the distance to it: a position to
+    // 1e-8 of the step leaves ~1e-16 of the value's change over the step, at round-off.
+    roots::peak(f, (0.0, frac), fm, 1e-8 * frac.max(1e-300))
+        .max(f0)
+        .max(f1)
 }
 
 /// Integrates one impact from first touch (validated scene and initial state).
