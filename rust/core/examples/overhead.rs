@@ -1,6 +1,6 @@
 //! The fixed cost per impact, outside the steps (issue 13): a sweep of the 946-impact grid
 //! (theta 4..89 deg x mu 0, 0.1 ... 1) on one thread, cases built the way the bindings build
-//! them (`scene_from_columns`, one scene per case), for several steps of one integrator; prints
+//! them (`cases_from_rows`, one scene per case), for several steps of one integrator; prints
 //! us/impact, mean steps and the intercept and slope of time against steps.
 //!
 //! `cargo run --release -p restitution-core --example overhead -- INTEGRATOR SHAPE_N [vary]`
@@ -8,15 +8,15 @@
 //! 120-gon; `vary`: every case its own gamma, so that no two cases share a scene). Also
 //! useful under `perf record`.
 
-use restitution_core::{run_cases, scene_from_columns, Case, CASE_COLUMNS, CHOICES};
+use restitution_core::{cases_from_rows, run_cases, Case, CASE_COLUMNS, CHOICES};
 use std::time::Instant;
 
 /// The cases of the grid with `integrator` at step `dt` (adaptive: largest step 1 at `tol`).
 fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
-    let mut cases = Vec::new();
+    let mut rows = Vec::new();
     for t in 4..=89 {
         for m in 0..=10 {
-            let k = cases.len() as f64;
+            let k = rows.len() as f64;
             let gamma = if vary { 0.33299 + 1e-6 * k } else { 0.33299 };
             let mut row = [f64::NAN; CASE_COLUMNS.len()];
             let set = |row: &mut [f64; CASE_COLUMNS.len()], name: &str, v: f64| {
@@ -49,11 +49,10 @@ fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
             ] {
                 set(&mut row, name, v);
             }
-            let (scene, init) = scene_from_columns(&row, None).expect("a valid case");
-            cases.push(Case { scene, init });
+            rows.push(row);
         }
     }
-    cases
+    cases_from_rows(rows.into_iter(), None).expect("valid cases")
 }
 
 /// Least-squares intercept and slope of y against x.

@@ -48,4 +48,4 @@ pub use model::{
     scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, Hertz, InertiaModel,
     Initial, Integrator, Model, NormalLaw, Scene, TangentialModel, CASE_COLUMNS, CHOICES,
 };
-pub use sweep::{check_cases, run_cases, run_cases_cancellable, Case};
+pub use sweep::{cases_from_rows, check_cases, run_cases, run_cases_cancellable, Case};

@@ -73,14 +73,9 @@ fn read_cases(
         )));
     }
     let vertices = read_vertices(vertices)?;
-    (0..len)
-        .map(|i| {
-            let row = std::array::from_fn(|k| slices[k][i]);
-            core::scene_from_columns(&row, vertices.as_deref())
-                .map(|(scene, init)| core::Case { scene, init })
-                .map_err(|e| PyCoreError(e, Some(i)).into())
-        })
-        .collect()
+    let rows = (0..len).map(|i| std::array::from_fn(|k| slices[k][i]));
+    core::cases_from_rows(rows, vertices.as_deref())
+        .map_err(|(i, e)| PyCoreError(e, Some(i)).into())
 }
 
 fn column<'py>(cols: &Bound<'py, PyDict>, name: &str) -> PyResult<PyReadonlyArray1<'py, f64>> {

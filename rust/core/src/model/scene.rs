@@ -731,18 +731,21 @@ fn choice(name: &str, code: f64) -> Result<usize> {
         .iter()
         .find(|(n, _)| *n == name)
         .map_or(&[][..], |c| c.1);
+    if code.fract() == 0.0 && code >= 0.0 && (code as usize) < names.len() {
+        return Ok(code as usize);
+    }
+    // The message lists the codes; formed only for a bad one (formed for every case, it took
+    // most of a sweep's per-case set-up, ~1 us).
     let listed: Vec<String> = names
         .iter()
         .enumerate()
         .map(|(i, n)| format!("{i} ({n})"))
         .collect();
-    ensure_param!(
-        code.fract() == 0.0 && code >= 0.0 && (code as usize) < names.len(),
+    Err(Error::invalid(
         name,
         code,
-        format!("a code in {}", listed.join(", "))
-    );
-    Ok(code as usize)
+        format!("a code in {}", listed.join(", ")),
+    ))
 }
 
 /// An optional parameter: NaN means unset.
@@ -804,6 +807,25 @@ pub fn scene_from_columns(
     row: &[f64; CASE_COLUMNS.len()],
     vertices: Option<&[[f64; 2]]>,
 ) -> Result<(Scene, Initial)> {
+    scene_from_columns_with(row, vertices, None)
+}
+
+/// The columns that make a case's shape: `n`, `r` and `body` (with the sweep's vertices).
+pub(crate) fn shape_key(row: &[f64; CASE_COLUMNS.len()]) -> [u64; 3] {
+    let at = |name: &str| {
+        let k = CASE_COLUMNS.iter().position(|c| *c == name);
+        k.map_or(0, |k| row[k].to_bits())
+    };
+    [at("n"), at("r"), at("body")]
+}
+
+/// [`scene_from_columns`], with the shape already built from the same `n`, `r` and `body`
+/// (and vertices) when `shape` is given.
+pub(crate) fn scene_from_columns_with(
+    row: &[f64; CASE_COLUMNS.len()],
+    vertices: Option<&[[f64; 2]]>,
+    shape: Option<Shape>,
+) -> Result<(Scene, Initial)> {
     let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body, max_steps, tol, error_estimate] =
         *row;
     check_theta(theta)?;
@@ -825,16 +847,18 @@ pub fn scene_from_columns(
     };
     optional(nu).map_or(Ok(()), |x| poisson("nu", x))?;
     optional(cor).map_or(Ok(()), check_cor)?;
-    let shape = if choice("body", body)? == 1 {
-        ensure_param!(
-            n == 0.0 && vertices.is_none(),
-            "n",
-            n,
-            "0 for a sphere (body \"sphere\")"
-        );
-        Shape::sphere(r)?
-    } else {
-        shape_from_columns(n, r, vertices)?
+    let shape = match shape {
+        Some(shape) => shape,
+        None if choice("body", body)? == 1 => {
+            ensure_param!(
+                n == 0.0 && vertices.is_none(),
+                "n",
+                n,
+                "0 for a sphere (body \"sphere\")"
+            );
+            Shape::sphere(r)?
+        }
+        None => shape_from_columns(n, r, vertices)?,
     };
     let scene = Scene {
         shape,
