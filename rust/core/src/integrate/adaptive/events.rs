@@ -85,8 +85,10 @@ impl Reference<'_> {
             }
             (Event::ToSlip, _) => {
                 // Stick starts with the spring on the cone (|trial| = mu F_n up to round-off):
-                // a margin of 1e-12 mu F_n keeps round-off from ending it at once (a chatter
-                // of zero-length pieces, then a sliding mode the tight run never enters).
+                // a margin of 1e-9 mu F_n keeps round-off from ending it at once (a chatter of
+                // zero-length pieces, then a sliding mode the tight run never enters). 1e-12
+                // was too little once switches were located to the last bits: near
+                // separation the disc's segment area carries ~2e-12 of round-off.
                 let e = eval().1;
                 e.trial.abs() - self.mu * e.forces.fy * (1.0 + STICK_MARGIN)
             }
@@ -173,7 +175,22 @@ impl Reference<'_> {
     /// The fraction of `step` at which event `ev` first fires, if it does inside the step.
     pub(super) fn switch_in(&self, m: &Mode, ev: Event, step: &Step) -> Option<f64> {
         let g1 = self.event_value_given(m, ev, &step.y1, Some((&step.k_end(), &step.end)));
-        if g1 > 0.0 {
+        if let Some(parts) = interior_samples(ev) {
+            // A corner may dip below the plate and rise again within one step (a grazing
+            // corner beside the chord), a short stick phase may begin and end within one (the
+            // disc at theta 54, mu 0.7 at tol 1e-6 missed one: e_T off by 2e-4): look inside
+            // the step too, also when the event fires at its end, so that the first switch is
+            // the one found (located on all of the step, a 120-gon's stick -> slip at 0.8913
+            // t_c gave way to the one at 0.9016 in the same step, and its short slip phase
+            // between was lost: e_T off by 1.8e-6 at tol 1e-6).
+            let w = 1.0 / parts as f64;
+            let inside = (1..parts).map(|k| k as f64 * w).find_map(|th| {
+                let g = self.event_value(m, ev, &step.at(th));
+                (g > 0.0).then(|| self.locate_in(m, ev, step, th - w, th, g))
+            });
+            let last = 1.0 - w;
+            inside.or_else(|| (g1 > 0.0).then(|| self.locate_in(m, ev, step, last, 1.0, g1)))
+        } else if g1 > 0.0 {
             Some(self.locate(m, ev, step, g1))
         } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
             // A stage saw the plate pull although the end state does not: the clip
@@ -183,16 +200,6 @@ impl Reference<'_> {
                 let g = self.event_value(m, ev, &step.at(th));
                 let lo = th - c / 16.0;
                 (g > 0.0).then(|| self.locate_in(m, ev, step, lo, th, g))
-            })
-        } else if let Some(parts) = interior_samples(ev) {
-            // A corner may dip below the plate and rise again within one step (a grazing
-            // corner beside the chord), a short stick phase may begin and end within one (the
-            // disc at theta 54, mu 0.7 at tol 1e-6 missed one: e_T off by 2e-4): look inside
-            // the step too.
-            let w = 1.0 / parts as f64;
-            (1..parts).map(|k| k as f64 * w).find_map(|th| {
-                let g = self.event_value(m, ev, &step.at(th));
-                (g > 0.0).then(|| self.locate_in(m, ev, step, th - w, th, g))
             })
         } else {
             None
