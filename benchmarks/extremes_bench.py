@@ -11,6 +11,7 @@ non-finite and energy-gaining records, the timed-out ones, and the fraction over
 
     python benchmarks/extremes_bench.py --n 10000 --seed 1
     python benchmarks/extremes_bench.py --quick          # 200 scenes
+    python benchmarks/extremes_bench.py --integrator adaptive   # every scene on the adaptive path
 """
 
 from __future__ import annotations
@@ -48,12 +49,13 @@ def draw(rng: np.random.Generator) -> dict:
     }
 
 
-def run_one(p: dict) -> tuple[str, object, float]:
-    """('ok', record, seconds) or ('refused', message, seconds)."""
+def run_one(p: dict, integrator: str | None = None) -> tuple[str, object, float]:
+    """('ok', record, seconds) or ('refused', message, seconds); ``integrator`` None: Scene()'s."""
     shape = rs.Disc(r=0.01) if p["n"] == 0 else rs.RegularPolygon(r=0.01, n=p["n"], phi0_deg=p["phi0_deg"])
     t0 = time.perf_counter()
     try:
-        scene = rs.Scene(shape=shape, mu=p["mu"], gamma=p["gamma"], E=p["E"], v=p["v"])
+        chosen = {} if integrator is None else {"integrator": integrator}
+        scene = rs.Scene(shape=shape, mu=p["mu"], gamma=p["gamma"], E=p["E"], v=p["v"], **chosen)
         rec = rs.simulate(scene, theta_deg=p["theta_deg"], omega_in=math.radians(p["omega_deg_s"]))
     except ValueError as err:
         return "refused", str(err), time.perf_counter() - t0
@@ -92,6 +94,8 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--quick", action="store_true", help="200 scenes")
     parser.add_argument("--slowest", type=int, default=15, help="how many of the slowest to print")
+    parser.add_argument("--integrator", default=None,
+                        help="run every scene with this integrator (default: Scene()'s, Gear-5)")
     args = parser.parse_args()
     n = 200 if args.quick else args.n
     rng = np.random.default_rng(args.seed)
@@ -99,7 +103,7 @@ def main() -> None:
     start = time.perf_counter()
     for i in range(n):
         p = draw(rng)
-        kind, out, secs = run_one(p)
+        kind, out, secs = run_one(p, args.integrator)
         results.append((secs, kind, out, p))
         if (i + 1) % max(1, n // 10) == 0:
             print(f"  {i + 1}/{n} scenes, {time.perf_counter() - start:.1f} s", flush=True)
