@@ -256,7 +256,7 @@ fn fixed_step_error_estimate_bounds_the_error() {
 /// The deepest point of an undamped, frictionless impact without spin is where the normal
 /// kinetic energy has all gone into the law's potential (the energy balance `estimate_max_depth`
 /// solves), and the largest overlap is the disc's segment at that depth, r^2 acos(1 - d / r)
-/// - (r - d) sqrt(2 r d - d^2): both found inside a step on the adaptive path, at any theta.
+/// minus (r - d) sqrt(2 r d - d^2): both found inside a step on the adaptive path, at any theta.
 /// A 12-gon falling head-on onto a corner does not turn either: its depth follows the same
 /// balance.
 #[test]

@@ -215,7 +215,8 @@ mod tests {
     fn finds_peaks_in_few_evaluations() {
         // Peaks known in closed form: a parabola's vertex, sin at pi/2 (on [1, 2]), and
         // x^1.5 (1 - x) at 3/5.
-        let cases: [(&dyn Fn(f64) -> f64, (f64, f64), f64); 3] = [
+        type Case<'a> = (&'a dyn Fn(f64) -> f64, (f64, f64), f64);
+        let cases: [Case; 3] = [
             (&|x: f64| 1.0 - (x - 0.3) * (x - 0.3), (0.0, 1.0), 1.0),
             (&|x: f64| x.sin(), (1.0, 2.0), 1.0),
             (
