@@ -176,6 +176,26 @@ impl NormalForce {
     }
 }
 
+impl NormalForce {
+    /// The rate of change of F_el + F_d on an exact disc of radius `r` (before the clip),
+    /// for the overlap `o`, body velocity `v` and acceleration `a` (x, y, spin): the time
+    /// derivative of [`NormalForce::on_overlap`] where the disc's lever arms are zero. The
+    /// area law: dA/dt = -c v_y with c the chord, and dc/dt = -4 (r - depth) v_y / c; the
+    /// linear law at the lowest point: d(depth)/dt = -v_y. `None` for the Hertz law (a sphere).
+    pub fn rate_on_disc(&self, o: &Overlap, r: f64, v: &Dof, a: &Dof) -> Option<f64> {
+        match self.law {
+            NormalLaw::Area => {
+                let c = o.chord;
+                let dc_dt = -4.0 * (r - o.depth) * v[1] / c;
+                let d2a_dt2 = -(dc_dt * v[1] + c * a[1]);
+                Some(self.e_over_l * -c * v[1] + self.area_damping * d2a_dt2)
+            }
+            NormalLaw::Linear { kn, cn } => Some(-kn * v[1] - cn * a[1]),
+            NormalLaw::Hertz { .. } => None,
+        }
+    }
+}
+
 /// The linear law on a polygon: one spring-dashpot per submerged corner (Cundall's vertex
 /// contacts), each acting vertically at its corner. `corners` yields, for every corner at or
 /// below the plate, its depth d_i and its x relative to the centre of mass; `v` is the body

@@ -4,7 +4,8 @@
 use super::dopri::Step;
 use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
-use super::{State, PHI, VY, Y};
+use super::{State, OM, PHI, VX, VY, Y};
+use crate::geometry::{disc_arm_per_depth, Shape};
 use crate::integrate::roots::bracket;
 
 /// Margin of the slip -> stick event function, relative to the sum of its terms' magnitudes
@@ -98,19 +99,60 @@ impl Reference<'_> {
     }
 
     /// Positive when a sticking spring would stay inside the Coulomb cone: the value
-    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates by central differences along the
-    /// motion of the slipping body.
+    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates along the motion of the slipping
+    /// body: in closed form on the exact disc (area or linear law, linear spring), by central
+    /// differences elsewhere.
     fn slip_to_stick(&self, m: &Mode, s: &State, eval: impl FnOnce() -> (State, Eval)) -> f64 {
         let Tan::Slip(sg) = m.tan else {
             return f64::NEG_INFINITY;
         };
         let (d, e) = eval();
+        if m.touch == Touch::Disc && e.depth <= 0.0 {
+            // Beyond separation the disc's contact continues as nothing.
+            return f64::NEG_INFINITY;
+        }
+        let (dfn, ddamp) = match self.disc_rates(m, s, &d, &e) {
+            Some(rates) => rates,
+            None => self.differenced_rates(m, s, &d, &e),
+        };
+        let (k_xi, rate, _) = self.model.spring(e.depth);
+        // Located where the value exceeds 1e-9 of its terms, the switch is robustly past its
+        // root (central differences carry ~1e-11 of the terms, the closed form round-off), and
+        // late by only that fraction of the value's rise time: a switch located where the
+        // value is noise leaves a spring on the cone that does not move inside, and stick and
+        // slip chatter at once (the disc at theta 84, mu 0.8 lost a stick phase of 0.004 t_c
+        // that way, e_T off by 1e-5 at tol 1e-6).
+        let terms = [self.mu * dfn, sg * k_xi * rate * e.v_t, sg * ddamp];
+        let noise = STICK_MARGIN * terms.iter().map(|t| t.abs()).sum::<f64>();
+        terms.iter().sum::<f64>() - noise
+    }
+
+    /// (dF_n/dt, d(c_t v_t)/dt) on the exact disc with the area or linear law and the linear
+    /// spring, in closed form from the state `s`, its derivative `d` and the evaluation `e`
+    /// there: F_n's rate from the law ([`NormalForce::rate_on_disc`]); v_t = v_x - omega
+    /// (c_y - y) changes with the accelerations and with the centroid's height, which follows
+    /// the depth ([`disc_arm_per_depth`]). One evaluation of the law where the differences
+    /// take three. `None` where the closed form is not written (polygons, the sphere, Mindlin).
+    fn disc_rates(&self, m: &Mode, s: &State, d: &State, e: &Eval) -> Option<(f64, f64)> {
+        let r = match self.model.scene.shape {
+            Shape::Disc { r } if m.touch == Touch::Disc && !self.model.mindlin => r,
+            _ => return None,
+        };
+        let o = e.forces.overlap?;
+        let (v, a) = ([s[VX], s[VY], s[OM]], [d[VX], d[VY], d[OM]]);
+        let dfn = self.normal.rate_on_disc(&o, r, &v, &a)?;
+        let arm = o.cy - s[Y];
+        let d_arm = disc_arm_per_depth(r, o.depth) * -s[VY];
+        let dv_t = a[0] - a[2] * arm - s[OM] * d_arm;
+        Some((dfn, self.model.spring(o.depth).2 * dv_t))
+    }
+
+    /// (dF_n/dt, d(c_t v_t)/dt) by central differences along the motion (`d` the derivative
+    /// at `s`): Mindlin's c_t(delta) changes too.
+    fn differenced_rates(&self, m: &Mode, s: &State, d: &State, e: &Eval) -> (f64, f64) {
         let mut h = self.fd_step;
         if let (Touch::Disc, None) = (m.touch, self.linear()) {
             // Keep both sample points inside the segment (no continuation beyond separation).
-            if e.depth <= 0.0 {
-                return f64::NEG_INFINITY;
-            }
             h = h.min(0.25 * e.depth / s[VY].abs().max(f64::MIN_POSITIVE));
         }
         let shifted = |sign: f64| {
@@ -122,23 +164,8 @@ impl Reference<'_> {
         };
         let (ep, em) = (shifted(1.0), shifted(-1.0));
         let dfn = (ep.fn_raw - em.fn_raw) / (2.0 * h);
-        let (k_xi, rate, ct) = self.model.spring(e.depth);
-        // The damping force's rate: c_t dv_t/dt, and for Mindlin's c_t(delta) its own change.
-        let dct = if self.model.mindlin {
-            let c = |ev: &Eval| self.model.spring(ev.depth).2 * ev.v_t;
-            (c(&ep) - c(&em)) / (2.0 * h)
-        } else {
-            ct * (ep.v_t - em.v_t) / (2.0 * h)
-        };
-        // The value carries the differences' error (truncation and round-off, each ~1e-11 of
-        // its terms at this step): a switch located where it is noise leaves a spring on the
-        // cone that does not move inside, and stick and slip chatter at once (the disc at theta
-        // 84, mu 0.8 lost a stick phase of 0.004 t_c that way, e_T off by 1e-5 at tol 1e-6).
-        // Located where the value exceeds 1e-9 of its terms instead, the switch is robustly
-        // past its root, and late by only that fraction of the value's rise time.
-        let terms = [self.mu * dfn, sg * k_xi * rate * e.v_t, sg * dct];
-        let noise = STICK_MARGIN * terms.iter().map(|t| t.abs()).sum::<f64>();
-        terms.iter().sum::<f64>() - noise
+        let damping = |ev: &Eval| self.model.spring(ev.depth).2 * ev.v_t;
+        (dfn, (damping(&ep) - damping(&em)) / (2.0 * h))
     }
 
     /// Fraction of `step` at which event `ev` first fires (its function turns positive),
@@ -246,5 +273,80 @@ fn interior_samples(ev: Event) -> Option<usize> {
         Event::EnterLeft | Event::EnterRight | Event::Touch => Some(8),
         Event::ToStick | Event::ToSlip => Some(4),
         _ => None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{ReferenceOptions, NS, OM, VX, VY, XI, Y};
+    use super::*;
+    use crate::impact::record::estimate_max_depth;
+    use crate::model::{Initial, Model, NormalLaw, Scene};
+
+    /// The slip -> stick test's rates in closed form on the exact disc equal their central
+    /// differences along the motion, over depths from grazing to deep, both laws, spins of
+    /// both signs and both slip directions.
+    #[test]
+    fn closed_form_disc_rates_match_central_differences() {
+        let laws = [NormalLaw::Area, NormalLaw::Linear { kn: 2e5, cn: 30.0 }];
+        for law in laws {
+            let scene = Scene {
+                normal_law: law,
+                gamma: 0.33,
+                gamma_t: 0.5,
+                ..Scene::default()
+            };
+            let model = Model::new(&scene).unwrap();
+            let init = Initial::from_angle(0.0357, 40.0, 0.0, 0.0);
+            let depth_est = estimate_max_depth(&model, &init).unwrap();
+            let (ode, _) =
+                Reference::for_impact(&model, &init, depth_est, &ReferenceOptions::default());
+            let r = model.r;
+            for frac in [1e-3, 0.05, 0.3, 0.9] {
+                for (vy, om, sg) in [(-0.02, 3.0, 1.0), (0.01, -5.0, -1.0), (-0.005, 0.0, 1.0)] {
+                    let mut s: State = [0.0; NS];
+                    s[Y] = r - frac * depth_est;
+                    s[VX] = 0.02;
+                    s[VY] = vy;
+                    s[OM] = om;
+                    s[XI] = 0.0;
+                    let m = Mode {
+                        touch: Touch::Disc,
+                        clip_on: true,
+                        clip_hold: false,
+                        tan: Tan::Slip(sg),
+                    };
+                    let (d, e) = ode.eval(&m, &s);
+                    let closed = ode.disc_rates(&m, &s, &d, &e).unwrap();
+                    // Central differences err like h^2 (1e-4 of the value at 1e-3 of the
+                    // depth, where the damping's rate grows like depth^-1/2) and, at finer
+                    // steps, by round-off: the closed form must lie within the truncation
+                    // error that halving the step reveals, or 1e-8 of the value.
+                    let at = |k: f64| {
+                        let fine = Reference {
+                            model: ode.model,
+                            verts: ode.verts,
+                            mu: ode.mu,
+                            scale: ode.scale,
+                            tol: ode.tol,
+                            fd_step: ode.fd_step / k,
+                            force_tol: ode.force_tol,
+                            normal: ode.normal,
+                        };
+                        fine.differenced_rates(&m, &s, &d, &e)
+                    };
+                    let (coarse, fine) = (at(1.0), at(2.0));
+                    let what = format!("{law:?} depth {frac} vy {vy} omega {om}");
+                    for (a, h, h2) in [(closed.0, coarse.0, fine.0), (closed.1, coarse.1, fine.1)] {
+                        let truncation = 4.0 / 3.0 * (h - h2).abs();
+                        let bound = 2.0 * truncation + 1e-8 * a.abs();
+                        assert!(
+                            (a - h2).abs() <= bound,
+                            "{what}: {a:e} vs {h2:e} ({h:e} at 2h)"
+                        );
+                    }
+                }
+            }
+        }
     }
 }

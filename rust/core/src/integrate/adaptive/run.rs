@@ -251,7 +251,7 @@ pub(crate) fn integrate(
 }
 
 /// What bounds one impact's integration, fixed at its start.
-struct Limits {
+pub(super) struct Limits {
     /// The largest step.
     h_max: f64,
     /// The estimated contact time.
@@ -675,7 +675,7 @@ fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
 
 impl<'a> Reference<'a> {
     /// The ODE of one impact and the limits of its integration.
-    fn for_impact(
+    pub(super) fn for_impact(
         model: &'a Model,
         init: &Initial,
         depth_est: f64,
