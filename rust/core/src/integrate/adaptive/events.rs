@@ -111,7 +111,7 @@ impl Reference<'_> {
             // Beyond separation the disc's contact continues as nothing.
             return f64::NEG_INFINITY;
         }
-        let (dfn, ddamp) = match self.disc_rates(m, s, &d, &e) {
+        let (dfn, ddamp) = match self.disc_rates(s, &d, &e) {
             Some(rates) => rates,
             None => self.differenced_rates(m, s, &d, &e),
         };
@@ -132,11 +132,12 @@ impl Reference<'_> {
     /// there: F_n's rate from the law ([`NormalForce::rate_on_disc`]); v_t = v_x - omega
     /// (c_y - y) changes with the accelerations and with the centroid's height, which follows
     /// the depth ([`disc_arm_per_depth`]). One evaluation of the law where the differences
-    /// take three. `None` where the closed form is not written (polygons, the sphere, Mindlin).
-    fn disc_rates(&self, m: &Mode, s: &State, d: &State, e: &Eval) -> Option<(f64, f64)> {
-        let r = match self.model.scene.shape {
-            Shape::Disc { r } if m.touch == Touch::Disc && !self.model.mindlin => r,
-            _ => return None,
+    /// take three. `None` where the closed form is not written (polygons, the sphere).
+    fn disc_rates(&self, s: &State, d: &State, e: &Eval) -> Option<(f64, f64)> {
+        // A disc takes only the area or linear law and the linear spring (`check_laws`), and
+        // in slip it is in contact.
+        let Shape::Disc { r } = self.model.scene.shape else {
+            return None;
         };
         let o = e.forces.overlap?;
         let (v, a) = ([s[VX], s[VY], s[OM]], [d[VX], d[VY], d[OM]]);
@@ -171,30 +172,54 @@ impl Reference<'_> {
     /// Fraction of `step` at which event `ev` first fires (its function turns positive),
     /// given that it fires at the end, located on the dense output.
     pub(super) fn locate(&self, m: &Mode, ev: Event, step: &Step, g1: f64) -> f64 {
-        self.locate_in(m, ev, step, 0.0, 1.0, g1)
+        self.locate_in(m, ev, step, (0.0, None), (1.0, g1))
     }
 
-    /// As [`Self::locate`], within [lo, hi] of the step, the event function positive at hi.
-    pub(super) fn locate_in(
+    /// As [`Self::locate`], within [lo, hi] of the step, the event function positive at hi
+    /// (`g_hi`) and at lo `g_lo` when known (else evaluated here).
+    fn locate_in(
         &self,
         m: &Mode,
         ev: Event,
         step: &Step,
-        lo: f64,
-        hi: f64,
-        g1: f64,
+        (lo, g_lo): (f64, Option<f64>),
+        (hi, g_hi): (f64, f64),
     ) -> f64 {
         let g = |th: f64| self.event_value(m, ev, &step.at(th));
-        let g0 = if lo == 0.0 {
-            self.event_value(m, ev, &step.y0)
-        } else {
-            g(lo)
-        };
+        let g0 = g_lo.unwrap_or_else(|| {
+            if lo == 0.0 {
+                self.event_value(m, ev, &step.y0)
+            } else {
+                g(lo)
+            }
+        });
         if g0 > 0.0 {
             return lo;
         }
         // The state just past the switch (the event fired) starts the next piece.
-        bracket(g, (lo, g0), (hi, g1), 1e-14).1
+        bracket(g, (lo, g0), (hi, g_hi), 1e-14).1
+    }
+
+    /// The first switch of event `ev` among samples of its function at the increasing
+    /// fractions `at` of `step` (with the value, where already known): located between the
+    /// first sample where the function is positive and the sample before it (the step's start
+    /// before the first), each value computed once.
+    fn first_sampled(
+        &self,
+        m: &Mode,
+        ev: Event,
+        step: &Step,
+        at: impl IntoIterator<Item = (f64, Option<f64>)>,
+    ) -> Option<f64> {
+        let mut before = (0.0, None);
+        for (th, known) in at {
+            let g = known.unwrap_or_else(|| self.event_value(m, ev, &step.at(th)));
+            if g > 0.0 {
+                return Some(self.locate_in(m, ev, step, before, (th, g)));
+            }
+            before = (th, Some(g));
+        }
+        None
     }
 }
 
@@ -211,23 +236,16 @@ impl Reference<'_> {
             // t_c gave way to the one at 0.9016 in the same step, and its short slip phase
             // between was lost: e_T off by 1.8e-6 at tol 1e-6).
             let w = 1.0 / parts as f64;
-            let inside = (1..parts).map(|k| k as f64 * w).find_map(|th| {
-                let g = self.event_value(m, ev, &step.at(th));
-                (g > 0.0).then(|| self.locate_in(m, ev, step, th - w, th, g))
-            });
-            let last = 1.0 - w;
-            inside.or_else(|| (g1 > 0.0).then(|| self.locate_in(m, ev, step, last, 1.0, g1)))
+            let inside = (1..parts).map(|k| (k as f64 * w, None));
+            self.first_sampled(m, ev, step, inside.chain([(1.0, Some(g1))]))
         } else if g1 > 0.0 {
             Some(self.locate(m, ev, step, g1))
         } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
             // A stage saw the plate pull although the end state does not: the clip
             // switched inside the step (and back, in the held continuation); find
             // where, on the dense output up to that stage.
-            (1..=16).map(|k| c * k as f64 / 16.0).find_map(|th| {
-                let g = self.event_value(m, ev, &step.at(th));
-                let lo = th - c / 16.0;
-                (g > 0.0).then(|| self.locate_in(m, ev, step, lo, th, g))
-            })
+            let at = (1..=16).map(|k| (c * k as f64 / 16.0, None));
+            self.first_sampled(m, ev, step, at)
         } else {
             None
         }
@@ -252,16 +270,9 @@ impl Reference<'_> {
         const AT: [f64; 10] = [
             0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 0.9375, 0.96875, 0.984375,
         ];
-        let mut lo = 0.0;
-        for f in AT {
-            let g = self.event_value(m, Event::ClipOff, &step.at(f * th));
-            if g > 0.0 {
-                let at = self.locate_in(m, Event::ClipOff, step, lo, f * th, g);
-                return Some((at, Event::ClipOff));
-            }
-            lo = f * th;
-        }
-        None
+        let at = AT.map(|f| (f * th, None));
+        self.first_sampled(m, Event::ClipOff, step, at)
+            .map(|at| (at, Event::ClipOff))
     }
 }
 
@@ -317,7 +328,7 @@ mod tests {
                         tan: Tan::Slip(sg),
                     };
                     let (d, e) = ode.eval(&m, &s);
-                    let closed = ode.disc_rates(&m, &s, &d, &e).unwrap();
+                    let closed = ode.disc_rates(&s, &d, &e).unwrap();
                     // Central differences err like h^2 (1e-4 of the value at 1e-3 of the
                     // depth, where the damping's rate grows like depth^-1/2) and, at finer
                     // steps, by round-off: the closed form must lie within the truncation
