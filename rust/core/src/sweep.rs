@@ -4,7 +4,7 @@
 use crate::cancel::Cancel;
 use crate::error::{Error, Result};
 use crate::impact::{simulate_cancellable, Record};
-use crate::model::scene::{scene_from_columns_with, shape_key};
+use crate::model::scene::{scene_from_columns_with, shape_columns};
 use crate::model::{check_case, Initial, Scene, CASE_COLUMNS};
 use rayon::prelude::*;
 
@@ -28,8 +28,9 @@ pub fn cases_from_rows(
 ) -> std::result::Result<Vec<Case>, (usize, Error)> {
     let mut out: Vec<Case> = Vec::new();
     let mut last_key = None;
+    let key_columns = shape_columns();
     for (i, row) in rows.enumerate() {
-        let key = shape_key(&row);
+        let key = key_columns.map(|k| row[k].to_bits());
         let shape = out
             .last()
             .filter(|_| last_key == Some(key))

@@ -809,13 +809,15 @@ pub fn scene_from_columns(
     scene_from_columns_with(row, vertices, None)
 }
 
-/// The columns that make a case's shape: `n`, `r` and `body` (with the sweep's vertices).
-pub(crate) fn shape_key(row: &[f64; CASE_COLUMNS.len()]) -> [u64; 3] {
-    let at = |name: &str| {
-        let k = CASE_COLUMNS.iter().position(|c| *c == name);
-        k.map_or(0, |k| row[k].to_bits())
-    };
-    [at("n"), at("r"), at("body")]
+/// Where in a row the columns that make a case's shape are: `n`, `r` and `body` (with the
+/// sweep's vertices).
+pub(crate) fn shape_columns() -> [usize; 3] {
+    ["n", "r", "body"].map(|name| {
+        CASE_COLUMNS
+            .iter()
+            .position(|c| *c == name)
+            .expect("a case column")
+    })
 }
 
 /// [`scene_from_columns`], with the shape already built from the same `n`, `r` and `body`
