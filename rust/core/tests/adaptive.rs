@@ -306,35 +306,31 @@ fn largest_depth_and_area_of_an_undamped_disc_follow_the_energy_balance() {
 }
 
 /// Impacts whose short stick or slip phases the adaptive path once lost (each then off by
-/// 1e-6 ... 2e-6 at tol 1e-6, against <= 1e-7 elsewhere): the same switches as the tight
-/// run, and the tolerance met. A 120-gon (the study's, gamma 0.33) at theta 65, mu 0.4 whose
-/// slip phase of 0.002 t_c lay inside a step that also ended on the next stick -> slip; the
-/// disc at theta 84, mu 0.8, gamma_t 0, whose stick phase near separation was lost to round-off
-/// in the cone test; a spinning 12-gon at theta 39, mu 0.6, largest step 0.2.
+/// 1e-6 ... 2e-6 at tol 1e-6, against <= 1e-7 elsewhere, or by 1.1e-4 ... 1.5e-4 at tol 1e-4):
+/// the same switches as the tight run, and the error within 0.3 tol. A 120-gon (the study's,
+/// gamma 0.33) at theta 65, mu 0.4 whose slip phase of 0.002 t_c lay inside a step that also
+/// ended on the next stick -> slip; the disc at theta 84, mu 0.8, gamma_t 0, whose stick phase
+/// near separation was lost to round-off in the cone test; a spinning 12-gon at theta 39,
+/// mu 0.6, largest step 0.2; two phases that graze the cone between the samples of a step
+/// (`grazes` in the adaptive path's events): the disc at theta 54, mu 0.7, gamma_t 0 slips for
+/// 0.055 t_ref inside a stick step of 0.54 t_ref, the 120-gon at theta 89, mu 0.7, gamma_t 0
+/// for 0.04 t_ref from touch.
 #[test]
 fn short_stick_and_slip_phases_are_not_lost() {
+    let (disc, c120) = (
+        Shape::disc(R).unwrap(),
+        Shape::regular_polygon(R, 120).unwrap(),
+    );
+    let c12 = Shape::regular_polygon(R, 12).unwrap();
+    // (shape, gamma, theta, mu, omega_in deg, gamma_t, largest step, tol)
     let cases = [
-        (
-            Shape::regular_polygon(R, 120).unwrap(),
-            0.33,
-            65.0,
-            0.4,
-            0.0,
-            0.5,
-            1.0,
-        ),
-        (Shape::disc(R).unwrap(), 0.33299, 84.0, 0.8, 0.0, 0.0, 1.0),
-        (
-            Shape::regular_polygon(R, 12).unwrap(),
-            0.33299,
-            39.0,
-            0.6,
-            -50.0,
-            0.0,
-            0.2,
-        ),
+        (c120.clone(), 0.33, 65.0, 0.4, 0.0, 0.5, 1.0, 1e-6),
+        (disc.clone(), 0.33299, 84.0, 0.8, 0.0, 0.0, 1.0, 1e-6),
+        (c12, 0.33299, 39.0, 0.6, -50.0, 0.0, 0.2, 1e-6),
+        (disc, 0.33299, 54.0, 0.7, 0.0, 0.0, 5.0, 1e-4),
+        (c120, 0.33299, 89.0, 0.7, 0.0, 0.0, 1.0, 1e-4),
     ];
-    for (shape, gamma, theta, mu, omega_deg, gamma_t, dt_factor) in cases {
+    for (shape, gamma, theta, mu, omega_deg, gamma_t, dt_factor, tol) in cases {
         let scene = Scene {
             shape,
             gamma,
@@ -343,14 +339,14 @@ fn short_stick_and_slip_phases_are_not_lost() {
             ..Scene::default()
         };
         let case = Case {
-            what: format!("theta {theta} mu {mu}"),
+            what: format!("theta {theta} mu {mu} tol {tol:e}"),
             init: Initial::from_angle(V, theta, f64::to_radians(omega_deg), 0.0),
             scene,
         };
         let reference = tight(&case);
-        let rec = adaptive(&case, 1e-6, dt_factor);
+        let rec = adaptive(&case, tol, dt_factor);
         let err = error(&rec, &reference, &case.init);
         assert_eq!(rec.slip_events, reference.slip_events, "{}", case.what);
-        assert!(err <= 3e-7, "{}: error {err:e}", case.what);
+        assert!(err <= 0.3 * tol, "{}: error {err:e}", case.what);
     }
 }

@@ -6,47 +6,52 @@ use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
 use super::{State, OM, PHI, VX, VY, Y};
 use crate::geometry::{disc_arm_per_depth, Shape};
-use crate::integrate::roots::bracket;
+use crate::integrate::roots::{self, bracket};
 
 /// Margin of the slip -> stick event function, relative to the sum of its terms' magnitudes
 /// (see `Reference::slip_to_stick`).
 const STICK_MARGIN: f64 = 1e-9;
 
 impl Reference<'_> {
-    /// The events that can end a piece of mode `m`.
-    pub(super) fn candidates(&self, m: &Mode) -> Vec<Event> {
-        let mut out = Vec::with_capacity(8);
-        match m.touch {
-            Touch::Off => {
-                out.push(Event::Touch);
-                return out;
+    /// The events that can end a piece of mode `m` (at most six; a fixed array, as this runs
+    /// once per step and an allocation per step showed in the profile).
+    pub(super) fn candidates(&self, m: &Mode) -> impl Iterator<Item = Event> {
+        let mut out = [None; 6];
+        let mut push = |ev: Event| {
+            if let Some(slot) = out.iter_mut().find(|e| e.is_none()) {
+                *slot = Some(ev);
             }
-            Touch::Disc => out.push(Event::Separate),
+        };
+        match m.touch {
+            Touch::Off => push(Event::Touch),
+            Touch::Disc => push(Event::Separate),
             Touch::Poly { len, .. } => {
                 let n = self.verts.len();
                 if len + 1 < n {
-                    out.push(Event::EnterLeft);
-                    out.push(Event::EnterRight);
+                    push(Event::EnterLeft);
+                    push(Event::EnterRight);
                 }
-                out.push(Event::LeaveLeft);
+                push(Event::LeaveLeft);
                 if len > 1 {
-                    out.push(Event::LeaveRight);
+                    push(Event::LeaveRight);
                 }
             }
         }
-        if !m.clip_hold {
-            out.push(if m.clip_on {
-                Event::ClipOff
-            } else {
-                Event::ClipOn
-            });
+        if m.touch != Touch::Off {
+            if !m.clip_hold {
+                push(if m.clip_on {
+                    Event::ClipOff
+                } else {
+                    Event::ClipOn
+                });
+            }
+            match m.tan {
+                Tan::Stick => push(Event::ToSlip),
+                Tan::Slip(_) => push(Event::ToStick),
+                Tan::None | Tan::Free => {}
+            }
         }
-        match m.tan {
-            Tan::Stick => out.push(Event::ToSlip),
-            Tan::Slip(_) => out.push(Event::ToStick),
-            Tan::None | Tan::Free => {}
-        }
-        out
+        out.into_iter().flatten()
     }
 
     /// The event function: > 0 once the piece's mode no longer holds.
@@ -224,8 +229,15 @@ impl Reference<'_> {
 }
 
 impl Reference<'_> {
-    /// The fraction of `step` at which event `ev` first fires, if it does inside the step.
-    pub(super) fn switch_in(&self, m: &Mode, ev: Event, step: &Step) -> Option<f64> {
+    /// The fraction of `step` at which event `ev` first fires, if it does inside the step;
+    /// `start` is the derivative and evaluation at the step's start.
+    pub(super) fn switch_in(
+        &self,
+        m: &Mode,
+        ev: Event,
+        step: &Step,
+        start: (&State, &Eval),
+    ) -> Option<f64> {
         let g1 = self.event_value_given(m, ev, &step.y1, Some((&step.k_end(), &step.end)));
         if let Some(parts) = interior_samples(ev) {
             // A corner may dip below the plate and rise again within one step (a grazing
@@ -235,9 +247,8 @@ impl Reference<'_> {
             // the one found (located on all of the step, a 120-gon's stick -> slip at 0.8913
             // t_c gave way to the one at 0.9016 in the same step, and its short slip phase
             // between was lost: e_T off by 1.8e-6 at tol 1e-6).
-            let w = 1.0 / parts as f64;
-            let inside = (1..parts).map(|k| (k as f64 * w, None));
-            self.first_sampled(m, ev, step, inside.chain([(1.0, Some(g1))]))
+            let g0 = || self.event_value_given(m, ev, &step.y0, Some(start));
+            self.sampled_switch(m, ev, step, parts, (g0, g1))
         } else if g1 > 0.0 {
             Some(self.locate(m, ev, step, g1))
         } else if let (Event::ClipOff, Some(c)) = (ev, step.pull) {
@@ -249,6 +260,68 @@ impl Reference<'_> {
         } else {
             None
         }
+    }
+
+    /// The first switch of `ev` inside `step` from its function sampled at `parts` equal
+    /// parts (`g0` its value at the start, computed only when needed: off the disc the slip ->
+    /// stick test differences two more evaluations of the law; `g1` at the end): the first positive
+    /// sample's, or, where every sample is negative, one that fires and clears again between
+    /// three samples around a local maximum (see [`grazes`]): Brent's search for that maximum
+    /// on the dense output.
+    fn sampled_switch(
+        &self,
+        m: &Mode,
+        ev: Event,
+        step: &Step,
+        parts: usize,
+        (g0, g1): (impl Fn() -> f64, f64),
+    ) -> Option<f64> {
+        let w = 1.0 / parts as f64;
+        let mut g = [0.0; MAX_PARTS + 1];
+        for k in 1..=parts {
+            g[k] = if k == parts {
+                g1
+            } else {
+                self.event_value(m, ev, &step.at(k as f64 * w))
+            };
+            if g[k] > 0.0 {
+                let before = if k == 1 { g0() } else { g[k - 1] };
+                let before = ((k - 1) as f64 * w, Some(before));
+                return Some(self.locate_in(m, ev, step, before, (k as f64 * w, g[k])));
+            }
+        }
+        // A peak between the start and the first sample shows only with the start's value:
+        // the function falls from the first sample to the second.
+        let first = if g[1] >= g[2] {
+            g[0] = g0();
+            0
+        } else {
+            1
+        };
+        let k = first + grazes(&g[first..=parts])?;
+        let value = |th: f64| self.event_value(m, ev, &step.at(th));
+        let positive = std::cell::Cell::new(None);
+        let (lo, hi) = ((k - 1) as f64 * w, (k + 1) as f64 * w);
+        roots::peak(
+            |th| {
+                let v = value(th);
+                if v > 0.0 && positive.get().is_none() {
+                    positive.set(Some((th, v)));
+                }
+                v
+            },
+            (lo, hi),
+            g[k],
+            1e-6 * w,
+        );
+        let (th, v) = positive.get()?;
+        // The root before the positive point (the samples left of it are negative).
+        let from = if th < k as f64 * w {
+            (lo, g[k - 1])
+        } else {
+            (k as f64 * w, g[k])
+        };
+        Some(self.locate_in(m, ev, step, (from.0, Some(from.1)), (th, v)))
     }
 
     /// A clip switch before a corner leaves (or the disc separates) at `th` of `step`. With
@@ -274,6 +347,37 @@ impl Reference<'_> {
         self.first_sampled(m, Event::ClipOff, step, at)
             .map(|at| (at, Event::ClipOff))
     }
+}
+
+/// The most parts [`interior_samples`] cuts a step into.
+const MAX_PARTS: usize = 8;
+
+/// The sample around which a function sampled at equal steps, negative at every sample, may
+/// still rise above zero: the middle of three consecutive samples whose parabola is concave
+/// with its vertex between the outer two and peaks above minus the largest third difference of
+/// the samples (the size of the cubic term the parabola leaves out). A stick phase grazing the
+/// Coulomb cone for a tenth of a step lies between quarter samples (the disc at theta 54,
+/// mu 0.7, gamma_t 0: a slip phase of 0.055 t_ref missed inside a step of 0.54 t_ref, e_T off
+/// by 1.5e-4 at tol 1e-4), and so may one that starts with the step (the 120-gon at theta 89,
+/// mu 0.7, gamma_t 0 slips for 0.04 t_ref from touch, where the function starts at zero).
+fn grazes(g: &[f64]) -> Option<usize> {
+    // The third differences only where a parabola peaks inside but below zero (this runs for
+    // every sampled event of every step, and peaks near zero are rare).
+    let cubic = || {
+        g.windows(4)
+            .map(|q| (q[3] - 3.0 * q[2] + 3.0 * q[1] - q[0]).abs())
+            .fold(0.0, f64::max)
+    };
+    (1..g.len() - 1).find(|&k| {
+        let (a, b, c) = (g[k - 1], g[k], g[k + 1]);
+        let curv = 2.0 * b - a - c;
+        // The vertex lies (c - a) / (2 curv) sample spacings from the middle sample.
+        if !(curv > 0.0 && (c - a).abs() <= 2.0 * curv) {
+            return false;
+        }
+        let top = b + (c - a) * (c - a) / (8.0 * curv);
+        top > 0.0 || top + cubic() > 0.0
+    })
 }
 
 /// Into how many parts a step is cut to look for an event that may fire and clear again

@@ -484,7 +484,10 @@ impl<'a, 't> Run<'a, 't> {
             if self.hold_tangential && matches!(ev, Event::ToSlip | Event::ToStick) {
                 continue;
             }
-            if let Some(th) = self.ode.switch_in(&self.mode, ev, step) {
+            if let Some(th) = self
+                .ode
+                .switch_in(&self.mode, ev, step, (&self.k1, &self.e1))
+            {
                 if matches!(ev, Event::LeaveLeft | Event::LeaveRight | Event::Separate) {
                     leaving = Some(th);
                 }
