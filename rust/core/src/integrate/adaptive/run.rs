@@ -25,8 +25,15 @@ const SCALE_FLOOR: f64 = 1e-3;
 /// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
 /// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
 /// spin; the speed where a component is zero), the positions' what those velocities cover
-/// in t_c / pi, the spring's the force that moves vx in t_c, the works' the energy.
-fn error_scales(model: &Model, init: &Initial, speed: f64, t_est: f64, energy: f64) -> State {
+/// in t_c / pi, the spring's the elongation that holds as much energy as the contact point's
+/// velocity scale (see below), the works' the energy.
+fn error_scales(
+    model: &Model,
+    init: &Initial,
+    (speed, energy): (f64, f64),
+    t_est: f64,
+    depth_est: f64,
+) -> State {
     let r = model.r;
     let v_in = init.vx.hypot(init.vy);
     // Floored at 1e-3 of the speed (spin included): a component far below the others (a
@@ -42,9 +49,22 @@ fn error_scales(model: &Model, init: &Initial, speed: f64, t_est: f64, energy: f
     scale[X] = scale[VX] * t_c;
     scale[Y] = scale[VY] * t_c;
     scale[PHI] = scale[OM] * t_c;
-    // Mindlin's xi is a force (section 14.4).
-    let force_scale = model.mass * scale[VX] / t_est;
-    scale[XI] = force_scale / if model.mindlin { 1.0 } else { model.kt };
+    // In stick the spring and the contact point's motion are one oscillator: an error of xi
+    // is worth one of the tangential velocity when their energies match, (1/2) k_t xi^2 =
+    // (1/2) m_t v^2, with m_t = 1 / (1/m + r^2/I) the mass the spring moves at the contact
+    // point and k_t its stiffness at the estimated largest depth. (The force that moves v_x in
+    // t_c, the scale before, is 3 / (omega_t t_c) ~ 1/6 of that on the paper's disc: it set 90
+    // % of the steps in stick, finer than any output needed.) Mindlin's xi is a force (section
+    // 14.4), the elongation times k_t.
+    let m_t = 1.0 / (1.0 / model.mass + r * r / model.inertia);
+    let (k_xi, rate, _) = model.spring(depth_est);
+    let k_t = k_xi * rate;
+    // Without a spring (k_t = 0) its elongation does not act: no error of it counts.
+    scale[XI] = if k_t > 0.0 {
+        scale[VX] * (m_t / k_t).sqrt() * if model.mindlin { k_t } else { 1.0 }
+    } else {
+        f64::INFINITY
+    };
     scale[W_EL] = energy;
     scale[W_D] = energy;
     scale[W_T] = energy;
@@ -689,7 +709,7 @@ impl<'a> Reference<'a> {
         let t_est = PI * depth_est / init.vy.abs();
         let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
         let energy_in = model.kinetic_energy(&[init.vx, init.vy, init.omega]);
-        let scale = error_scales(model, init, speed, t_est, energy_in);
+        let scale = error_scales(model, init, (speed, energy_in), t_est, depth_est);
         let verts = model.scene.shape.vertices();
         let ode = Reference {
             model,
