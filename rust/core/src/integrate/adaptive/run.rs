@@ -140,8 +140,8 @@ impl Reference<'_> {
             return [0.0; NS];
         }
         let (half, _) = self.dp_step(m, s, k1, 0.5 * h);
-        let (k_mid, _) = self.eval(m, &half.y1);
-        let (second, _) = self.dp_step(m, &half.y1, &k_mid, 0.5 * h);
+        // The first half's last stage is the second's first (first-same-as-last).
+        let (second, _) = self.dp_step(m, &half.y1, &half.k_end(), 0.5 * h);
         std::array::from_fn(|i| 3.41 * (second.y1[i] - y1[i]).abs())
     }
 }
