@@ -114,6 +114,7 @@ impl Reference<'_> {
         k[0] = *k1;
         let mut pull = None;
         let mut end = Eval::default();
+        let mut e = Eval::default();
         // The 7th stage is evaluated at the 5th-order solution itself (FSAL): its stage state,
         // formed with the weights A[6], is y1.
         let mut y1 = *y0;
@@ -126,13 +127,13 @@ impl Reference<'_> {
                 }
                 yi[i] += h * acc;
             }
-            let (kk, e) = self.eval(m, &yi);
-            k[st] = kk;
+            self.eval_to(m, &yi, &mut k[st], &mut e);
             if pull.is_none() && m.clipped() && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
             }
-            end = e;
-            y1 = yi;
+            if st == 6 {
+                (end, y1) = (e, yi);
+            }
         }
         let err_vec: State =
             std::array::from_fn(|i| h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>());

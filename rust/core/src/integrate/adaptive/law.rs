@@ -147,7 +147,19 @@ impl<'a> Reference<'a> {
     /// Forces and the time derivative of the state in mode `m`: the law's own functions
     /// ([`NormalForce`], [`vertex_springs`], [`trial_force`], [`Forces::on_overlap`]) on the
     /// held overlap, with the clip and the tangential law that the mode holds.
+    #[inline]
     pub(super) fn eval(&self, m: &Mode, s: &State) -> (State, Eval) {
+        let mut d = [0.0; NS];
+        let mut e = Eval::default();
+        self.eval_to(m, s, &mut d, &mut e);
+        (d, e)
+    }
+
+    /// [`Self::eval`] into `d_out` and `e_out`: the Runge-Kutta stages write each derivative
+    /// where the next stage reads it (returned, the ~0.3 kB went through a copy whose wide
+    /// loads of just-stored scalars stalled each stage).
+    #[inline(never)]
+    pub(super) fn eval_to(&self, m: &Mode, s: &State, d_out: &mut State, e_out: &mut Eval) {
         let model = self.model;
         let mut d = [0.0; NS];
         d[X] = s[VX];
@@ -155,13 +167,12 @@ impl<'a> Reference<'a> {
         d[PHI] = s[OM];
         let Some(o) = self.overlap(m.touch, s[Y], s[PHI]) else {
             let depth = model.scene.shape.touch_height(s[PHI]) - s[Y];
-            return (
-                d,
-                Eval {
-                    depth,
-                    ..Eval::default()
-                },
-            );
+            *d_out = d;
+            *e_out = Eval {
+                depth,
+                ..Eval::default()
+            };
+            return;
         };
         let v = [s[VX], s[VY], s[OM]];
         let (f_el, f_d, x_el, x_damp) = match (self.linear(), m.touch) {
@@ -205,7 +216,7 @@ impl<'a> Reference<'a> {
             trial,
             depth: o.depth,
         };
-        (d, e)
+        (*d_out, *e_out) = (d, e);
     }
 
     /// The spring elongation the law implies: integrated while sticking, algebraic otherwise.
