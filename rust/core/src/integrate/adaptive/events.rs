@@ -366,13 +366,19 @@ const MAX_PARTS: usize = 8;
 fn grazes(g: &[f64]) -> Option<usize> {
     // The third differences only where a parabola peaks inside but below zero (this runs for
     // every sampled event of every step, and peaks near zero are rare).
+    // Event functions are -inf where their switch cannot happen (a disc's slip -> stick test
+    // beyond separation): no parabola through those.
     let cubic = || {
         g.windows(4)
             .map(|q| (q[3] - 3.0 * q[2] + 3.0 * q[1] - q[0]).abs())
+            .filter(|d| d.is_finite())
             .fold(0.0, f64::max)
     };
     (1..g.len() - 1).find(|&k| {
         let (a, b, c) = (g[k - 1], g[k], g[k + 1]);
+        if !(a.is_finite() && b.is_finite() && c.is_finite()) {
+            return false;
+        }
         let curv = 2.0 * b - a - c;
         // The vertex lies (c - a) / (2 curv) sample spacings from the middle sample.
         if !(curv > 0.0 && (c - a).abs() <= 2.0 * curv) {
@@ -386,6 +392,7 @@ fn grazes(g: &[f64]) -> Option<usize> {
 /// Into how many parts a step is cut to look for an event that may fire and clear again
 /// inside it (its function positive only in the middle), or `None` for events whose function
 /// is monotone over a step.
+///
 /// Stick/slip: thirds, the fewest whose four values give [`grazes`] a third difference (with
 /// halves the disc at theta 54, mu 0.7, gamma_t 0 lost its short slip phase again; quarters
 /// found the same switches over the full adaptive grid at one evaluation more per step).
@@ -403,6 +410,31 @@ mod tests {
     use super::*;
     use crate::impact::record::estimate_max_depth;
     use crate::model::{Initial, Model, NormalLaw, Scene};
+
+    /// `grazes` finds a peak above zero between negative samples (of a parabola, exactly), and
+    /// none where the function stays below zero, is monotone, or is -inf at a sample.
+    #[test]
+    fn grazes_flags_a_peak_above_zero_between_negative_samples() {
+        let at = |f: &dyn Fn(f64) -> f64, parts: usize| -> Vec<f64> {
+            (0..=parts).map(|k| f(k as f64 / parts as f64)).collect()
+        };
+        // Positive only on (0.47, 0.53): every third is negative.
+        let graze = |t: f64| 1e-3 - (t - 0.5) * (t - 0.5);
+        let g = at(&graze, 3);
+        assert!(g.iter().all(|&v| v < 0.0));
+        assert!(grazes(&g).is_some());
+        // The same peak 0.002 below zero, and a monotone function.
+        assert_eq!(grazes(&at(&|t| graze(t) - 3e-3, 3)), None);
+        assert_eq!(grazes(&at(&|t| -1.0 - t, 3)), None);
+        // A slip -> stick test beyond separation is -inf: no parabola through it.
+        assert_eq!(grazes(&[f64::NEG_INFINITY, -1.0, -0.5, -1.0]), None);
+        // A peak just after a start at zero (a slip phase from touch): found from the parabola
+        // through the start and the first two samples.
+        let from_touch = |t: f64| t * (0.1 - t);
+        let g = at(&from_touch, 3);
+        assert!(g[1..].iter().all(|&v| v < 0.0) && g[0] == 0.0);
+        assert_eq!(grazes(&g), Some(1));
+    }
 
     /// The slip -> stick test's rates in closed form on the exact disc equal their central
     /// differences along the motion, over depths from grazing to deep, both laws, spins of
