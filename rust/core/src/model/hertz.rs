@@ -15,10 +15,11 @@
 //! steps of at most 1/20 of the time to touch or to leave, from 1e-9 at touch, where the force is
 //! not smooth, to 1e-3; the end,
 //! where the clipped force reaches zero, located by bisection of the last step) and inverting
-//! e(beta) by the Illinois method. Accuracy of e(beta): ~1e-11 (halving the steps moves it by
-//! < 3e-12); beta is found to |e(beta) - cor| < 1e-12. A sweep varies cor rarely, so the last
+//! e(beta) by the ITP method (`integrate::roots`). Accuracy of e(beta): ~1e-11 (halving the
+//! steps moves it by < 3e-12); beta is found to 1e-13 of itself, |e(beta) - cor| ~ 1e-13. A sweep varies cor rarely, so the last
 //! value is cached per thread.
 
+use crate::integrate::roots;
 use std::cell::Cell;
 
 /// Smallest `cor` the calibration accepts: below it the contact is so overdamped that e(beta)
@@ -121,7 +122,9 @@ pub fn beta_for_cor(cor: f64) -> f64 {
     beta
 }
 
-/// Illinois regula falsi on e(beta) - cor, bracketed from the linear-spring guess.
+/// The root of e(beta) - cor, bracketed from the linear-spring guess and closed by the
+/// project's one root finder ([`roots::bracket`], the ITP method) to 1e-13 of beta: e falls by
+/// at most ~1 per unit of beta, so |e(beta) - cor| stays near 1e-13.
 fn invert(cor: f64) -> f64 {
     let g = |b: f64| restitution_for_beta(b) - cor;
     let ln = cor.ln();
@@ -133,28 +136,8 @@ fn invert(cor: f64) -> f64 {
         hi *= 2.0;
         ghi = g(hi);
     }
-    let mut side = 0i8;
-    for _ in 0..200 {
-        let b = (lo * ghi - hi * glo) / (ghi - glo);
-        let gb = g(b);
-        if gb.abs() < 1e-12 || hi - lo < 1e-15 * hi {
-            return b;
-        }
-        if gb > 0.0 {
-            (lo, glo) = (b, gb);
-            if side == 1 {
-                ghi *= 0.5;
-            }
-            side = 1;
-        } else {
-            (hi, ghi) = (b, gb);
-            if side == -1 {
-                glo *= 0.5;
-            }
-            side = -1;
-        }
-    }
-    0.5 * (lo + hi)
+    let (near, far) = roots::bracket(g, (lo, glo), (hi, ghi), 1e-13 * hi);
+    0.5 * (near + far)
 }
 
 const PI2: f64 = std::f64::consts::PI * std::f64::consts::PI;
