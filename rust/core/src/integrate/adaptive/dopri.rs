@@ -4,6 +4,10 @@ use super::law::{Eval, Reference};
 use super::piece::{Mode, Tan};
 use super::{State, NS, XI};
 
+/// The components the forces depend on: x, y, phi, the velocities and the spring (the works
+/// follow them).
+const MECHANICAL: usize = XI + 1;
+
 // Dormand-Prince 5(4) tableau (Dormand & Prince 1980; dense output of Hairer, Norsett & Wanner)
 
 // The forces do not depend on time explicitly, so the nodes c_i are not needed.
@@ -72,10 +76,10 @@ pub(super) struct Step {
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pub(super) pull: Option<f64>,
-    /// The dense output's coefficients r2 ... r5 of each component, formed on the first call
-    /// of [`Step::at`]: the search for switches inside a step calls it many times (it took a
-    /// sixth of the adaptive path's time when each call formed them again).
-    dense: std::cell::OnceCell<[[f64; 4]; NS]>,
+    /// The dense output's coefficients r2 ... r5 of each mechanical component (see
+    /// [`Step::at`]), formed on its first call: the search for switches inside a step calls it
+    /// many times (it took a sixth of the adaptive path's time when each call formed them again).
+    dense: std::cell::OnceCell<[[f64; 4]; MECHANICAL]>,
     /// The evaluation at `y1` (the last stage, first-same-as-last): its derivative is
     /// `k[6]`; reused for the event functions at the step's end and for the next step.
     pub(super) end: Eval,
@@ -87,7 +91,10 @@ impl Step {
         self.k[6]
     }
 
-    /// The state at fraction `theta` of the step (4th-order interpolant).
+    /// The state at fraction `theta` of the step (4th-order interpolant) for the forces and the
+    /// events, which depend on the position, velocity and spring: the works are the step's start
+    /// values, not interpolated (nothing inside a step reads them; interpolating them was 30 %
+    /// of the dense output's cost).
     pub(super) fn at(&self, theta: f64) -> State {
         let eta = 1.0 - theta;
         let dense = self.dense.get_or_init(|| {
@@ -99,10 +106,11 @@ impl Step {
                 [r2, r3, r4, r5]
             })
         });
-        std::array::from_fn(|i| {
-            let [r2, r3, r4, r5] = dense[i];
-            self.y0[i] + theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)))
-        })
+        let mut s = self.y0;
+        for (i, &[r2, r3, r4, r5]) in dense.iter().enumerate() {
+            s[i] += theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)));
+        }
+        s
     }
 }
 

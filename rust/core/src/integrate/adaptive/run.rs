@@ -146,6 +146,17 @@ impl Reference<'_> {
     }
 }
 
+/// The step size controller's factor after an accepted step with scaled error `err` (<= 1):
+/// 0.9 err^(-1/5), at most 5. Below 1.8e-4 that is 5 without the power (0.9 (1.8e-4)^(-1/5) =
+/// 5.04), which libm's pow, at ~60 steps an impact, made 4 % of the adaptive path's time.
+fn growth(err: f64) -> f64 {
+    if err < 1.8e-4 {
+        5.0
+    } else {
+        (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+    }
+}
+
 /// Shortest stick phase, in units of the estimated contact time, that counts for
 /// `slip_events` (see `Run::take`).
 const MIN_STICK: f64 = 1e-6;
@@ -474,7 +485,7 @@ impl<'a, 't> Run<'a, 't> {
             self.h = (h * (0.9 * err.powf(-0.2)).max(0.2)).max(h_min);
             return None;
         }
-        let h_next = h * (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
+        let h_next = h * growth(err);
         let first = self.first_switch(&step);
         if let Some(c) = step.pull.filter(|_| self.zero_pieces < MAX_ZERO_PIECES) {
             if first.is_none_or(|(th, _)| th > c) && h > h_min {
