@@ -141,9 +141,11 @@ def report(shape: str, rows: list[dict]) -> None:
     for integrator in dict.fromkeys(r["integrator"] for r in rows):
         a, b = fit(rows, integrator)
         steps = [r["steps"] for r in rows if r["integrator"] == integrator]
-        if max(steps) < 1.5 * min(steps) or a < 0:
-            # The reference's steps barely move with its largest step: no intercept to read.
-            verdict = "fit ill-conditioned: steps vary too little"
+        if integrator == "reference" or max(steps) < 1.5 * min(steps) or a < 0:
+            # The reference's steps are set by its tolerance and barely move with its largest
+            # step (two of its three settings take the same steps): its intercept swung from
+            # -6 to +8 us between runs, so none is read.
+            verdict = "not read: its steps barely vary"
         else:
             verdict = "meets" if a <= 3.0 else "MISSES"
         print(f"{shape}: {integrator:<9} fixed cost {a:6.1f} us/impact, {b:6.1f} ns/step "
