@@ -156,8 +156,8 @@ impl<'a> Reference<'a> {
     }
 
     /// [`Self::eval`] into `d_out` and `e_out`: the Runge-Kutta stages write each derivative
-    /// where the next stage reads it (returned, the ~0.3 kB went through a copy whose wide
-    /// loads of just-stored scalars stalled each stage).
+    /// where the next stage reads it (returned and copied into place, the ~0.3 kB result cost
+    /// 8 % of the adaptive path's time on the disc and 13 % on the 120-gon).
     #[inline(never)]
     pub(super) fn eval_to(&self, m: &Mode, s: &State, d_out: &mut State, e_out: &mut Eval) {
         let model = self.model;
