@@ -347,10 +347,10 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         }
     }
 
-    /// The linear law on a polygon (Gear-5 only: Verlet is refused for it, below): one
-    /// dashpot per submerged corner, whose force jumps as the corner crosses the plate, so
-    /// every crossing is an event, with friction too (a step straddling a jump errs to first order: energy residuals up to 2.7e-5 with
-    /// plain steps, 1.5e-6 located, quick matrix and `examples/linear_events.rs`). Verlet is
+    /// The linear law on a polygon (Gear-5 only): one dashpot per submerged corner, whose force
+    /// jumps as the corner crosses the plate, so every crossing is an event, with friction too
+    /// (a step straddling a jump errs to first order: energy residuals up to 2.7e-5 with plain
+    /// steps, 1.5e-6 located, quick matrix and `examples/linear_events.rs`). Verlet is
     /// refused for this law on a polygon (`check_laws`): its audit, the trapezoid of the
     /// powers, closes only where the force is continuous and the step fixed (the boundary term
     /// h^2 |F|^2 / 8m telescopes away), so every located jump would leave an O(h^2) residual

@@ -174,9 +174,7 @@ impl NormalForce {
             }
         }
     }
-}
 
-impl NormalForce {
     /// The rate of change of F_el + F_d on an exact disc of radius `r` (before the clip),
     /// for the overlap `o`, body velocity `v` and acceleration `a` (x, y, spin): the time
     /// derivative of [`NormalForce::on_overlap`] where the disc's lever arms are zero. The
