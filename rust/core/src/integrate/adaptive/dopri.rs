@@ -76,6 +76,9 @@ pub(super) struct Step {
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pub(super) pull: Option<f64>,
+    /// In stick: the least and the largest value of the stick -> slip event function over
+    /// the stages' states, the end's included (see `Reference::stays_stuck`).
+    pub(super) stick_span: (f64, f64),
     /// The dense output's coefficients r2 ... r5 of each mechanical component (see
     /// [`Step::at`]), formed on its first call: the search for switches inside a step calls it
     /// many times (it took a sixth of the adaptive path's time when each call formed them again).
@@ -121,6 +124,7 @@ impl Reference<'_> {
         let mut k = [[0.0; NS]; 7];
         k[0] = *k1;
         let mut pull = None;
+        let mut stick_span = (f64::INFINITY, f64::NEG_INFINITY);
         let mut end = Eval::default();
         let mut e = Eval::default();
         // The 7th stage is evaluated at the 5th-order solution itself (FSAL): its stage state,
@@ -138,6 +142,10 @@ impl Reference<'_> {
             self.eval_to(m, &yi, &mut k[st], &mut e);
             if pull.is_none() && m.clipped() && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
+            }
+            if m.tan == Tan::Stick {
+                let g = self.to_slip_value(&e);
+                stick_span = (stick_span.0.min(g), stick_span.1.max(g));
             }
             if st == 6 {
                 (end, y1) = (e, yi);
@@ -157,6 +165,7 @@ impl Reference<'_> {
             h,
             err: err_vec,
             pull,
+            stick_span,
             dense: std::cell::OnceCell::new(),
             end,
         };

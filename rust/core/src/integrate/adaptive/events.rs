@@ -95,12 +95,17 @@ impl Reference<'_> {
                 // zero-length pieces, then a sliding mode the tight run never enters). 1e-12
                 // was too little once switches were located to the last bits: near
                 // separation the disc's segment area carries ~2e-12 of round-off.
-                let e = eval().1;
-                e.trial.abs() - self.mu * e.forces.fy * (1.0 + STICK_MARGIN)
+                self.to_slip_value(&eval().1)
             }
             (Event::ToStick, _) => self.slip_to_stick(m, s, eval),
             _ => f64::NEG_INFINITY,
         }
+    }
+
+    /// The stick -> slip event function at an evaluation: |F_trial| - mu F_n, with the
+    /// margin of `STICK_MARGIN` (see `event_value_given`).
+    pub(super) fn to_slip_value(&self, e: &Eval) -> f64 {
+        e.trial.abs() - self.mu * e.forces.fy * (1.0 + STICK_MARGIN)
     }
 
     /// Positive when a sticking spring would stay inside the Coulomb cone: the value
@@ -242,6 +247,9 @@ impl Reference<'_> {
         start: (&State, &Eval),
     ) -> Option<f64> {
         let g1 = self.event_value_given(m, ev, &step.y1, Some((&step.k_end(), &step.end)));
+        if ev == Event::ToSlip && g1 <= 0.0 && self.stays_stuck(m, step, start) {
+            return None;
+        }
         if let Some(parts) = interior_samples(ev) {
             // A corner may dip below the plate and rise again within one step (a grazing
             // corner beside the chord), a short stick phase may begin and end within one (the
@@ -263,6 +271,16 @@ impl Reference<'_> {
         } else {
             None
         }
+    }
+
+    /// Whether a stick step stays inside the Coulomb cone by more than its event function
+    /// varies over the step's stages: then no sample between them can find a slip phase, and
+    /// the law need not be evaluated for them (two evaluations per stick step, where the
+    /// stages' own evaluations already give the function at seven points).
+    fn stays_stuck(&self, m: &Mode, step: &Step, start: (&State, &Eval)) -> bool {
+        let g0 = self.event_value_given(m, Event::ToSlip, &step.y0, Some(start));
+        let (lo, hi) = (step.stick_span.0.min(g0), step.stick_span.1.max(g0));
+        hi + STUCK_SPANS * (hi - lo) < 0.0
     }
 
     /// The first switch of `ev` inside `step` from its function sampled at `parts` equal
@@ -351,6 +369,10 @@ impl Reference<'_> {
             .map(|at| (at, Event::ClipOff))
     }
 }
+
+/// How many times its variation over a step's stages the stick -> slip event function must
+/// stay below zero for the step to skip its samples (see `Reference::stays_stuck`).
+const STUCK_SPANS: f64 = 2.0;
 
 /// The most parts [`interior_samples`] cuts a step into.
 const MAX_PARTS: usize = 8;
