@@ -7,6 +7,7 @@
 //! three spins, two tangential dampings, four tolerances) runs behind `--ignored`:
 //! `cargo test --release --test adaptive -- --ignored --nocapture`.
 
+use restitution_core::integrate::adaptive::LOCAL_TOL_PER_TARGET;
 use restitution_core::{
     simulate, simulate_reference, Initial, Integrator, Record, ReferenceOptions, Scene, Shape,
 };
@@ -306,8 +307,12 @@ fn largest_depth_and_area_of_an_undamped_disc_follow_the_energy_balance() {
 }
 
 /// Impacts whose short stick or slip phases the adaptive path once lost (each then off by
-/// 1e-6 ... 2e-6 at tol 1e-6, against <= 1e-7 elsewhere, or by 1.1e-4 ... 1.5e-4 at tol 1e-4):
-/// the same switches as the tight run, and the error within 0.3 tol. A 120-gon (the study's,
+/// 1e-6 ... 2e-6 at tol 1e-6, against <= 1e-7 elsewhere, or by 1.1e-4 ... 1.5e-4 at tol 1e-4,
+/// at a local tolerance of 0.15 tol): the same switches as the tight run, and the error within
+/// two local tolerances (1 tol at the local tolerance 0.5 tol: without the grazing search the
+/// 120-gon at theta 89 is off by 1.5 tol, and without samples inside the steps the disc at
+/// theta 54 by 1.5 tol and the 12-gon by 0.99 tol with a slip phase lost; found, the largest
+/// is 0.58 tol). A 120-gon (the study's,
 /// gamma 0.33) at theta 65, mu 0.4 whose slip phase of 0.002 t_c lay inside a step that also
 /// ended on the next stick -> slip; the disc at theta 84, mu 0.8, gamma_t 0, whose stick phase
 /// near separation was lost to round-off in the cone test; a spinning 12-gon at theta 39,
@@ -347,6 +352,7 @@ fn short_stick_and_slip_phases_are_not_lost() {
         let rec = adaptive(&case, tol, dt_factor);
         let err = error(&rec, &reference, &case.init);
         assert_eq!(rec.slip_events, reference.slip_events, "{}", case.what);
-        assert!(err <= 0.3 * tol, "{}: error {err:e}", case.what);
+        let bound = 2.0 * LOCAL_TOL_PER_TARGET * tol;
+        assert!(err <= bound, "{}: error {err:e}", case.what);
     }
 }
