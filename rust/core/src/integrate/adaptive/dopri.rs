@@ -63,7 +63,7 @@ const D: [f64; 7] = [
 ];
 
 /// The nodes c_i of the stages (fractions of the step at which each stage is evaluated).
-const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
+pub(super) const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 
 /// One accepted Runge-Kutta step with what its dense output needs.
 pub(super) struct Step {
@@ -79,6 +79,9 @@ pub(super) struct Step {
     /// In stick: the least and the largest value of the stick -> slip event function over
     /// the stages' states, the end's included (see `Reference::stays_stuck`).
     pub(super) stick_span: (f64, f64),
+    /// In slip: the normal force and the contact point's tangential velocity at the stages'
+    /// states (the end's last), see `Reference::stays_slipping`.
+    pub(super) slip_stages: [(f64, f64); 6],
     /// The dense output's coefficients r2 ... r5 of each mechanical component (see
     /// [`Step::at`]), formed on its first call: the search for switches inside a step calls it
     /// many times (it took a sixth of the adaptive path's time when each call formed them again).
@@ -89,6 +92,11 @@ pub(super) struct Step {
 }
 
 impl Step {
+    /// The step's length.
+    pub(super) fn h_len(&self) -> f64 {
+        self.h
+    }
+
     /// The derivative at `y1` (the next step's first stage when it starts there).
     pub(super) fn k_end(&self) -> State {
         self.k[6]
@@ -148,6 +156,7 @@ impl Reference<'_> {
         k[0] = *k1;
         let mut pull = None;
         let mut stick_span = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut slip_stages = [(0.0, 0.0); 6];
         let mut end = Eval::default();
         let mut e = Eval::default();
         // The 7th stage is evaluated at the 5th-order solution itself (FSAL): its stage state,
@@ -166,9 +175,13 @@ impl Reference<'_> {
             if pull.is_none() && m.clipped() && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
             }
-            if m.tan == Tan::Stick {
-                let g = self.to_slip_value(&e);
-                stick_span = (stick_span.0.min(g), stick_span.1.max(g));
+            match m.tan {
+                Tan::Stick => {
+                    let g = self.to_slip_value(&e);
+                    stick_span = (stick_span.0.min(g), stick_span.1.max(g));
+                }
+                Tan::Slip(_) => slip_stages[st - 1] = (e.forces.fy, e.v_t),
+                Tan::None | Tan::Free => {}
             }
             if st == 6 {
                 (end, y1) = (e, yi);
@@ -189,6 +202,7 @@ impl Reference<'_> {
             err: err_vec,
             pull,
             stick_span,
+            slip_stages,
             dense: std::cell::OnceCell::new(),
             end,
         };

@@ -1,7 +1,7 @@
 //! The switches that end a piece: their event functions (continuous, <= 0 while the piece's
 //! mode holds), which of them can end a given mode, and where inside a step one fires.
 
-use super::dopri::Step;
+use super::dopri::{Step, C};
 use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
 use super::{State, OM, PHI, VX, VY, Y};
@@ -263,6 +263,9 @@ impl Reference<'_> {
         if ev == Event::ToSlip && g1 <= 0.0 && self.stays_stuck(m, step, start) {
             return None;
         }
+        if ev == Event::ToStick && g1 <= 0.0 && self.stays_slipping(m, step, start.1) {
+            return None;
+        }
         if let Some(parts) = interior_samples(ev) {
             // A corner may dip below the plate and rise again within one step (a grazing
             // corner beside the chord), a short stick phase may begin and end within one (the
@@ -294,6 +297,44 @@ impl Reference<'_> {
         let g0 = self.event_value_given(m, Event::ToSlip, &step.y0, Some(start));
         let (lo, hi) = (step.stick_span.0.min(g0), step.stick_span.1.max(g0));
         hi + STUCK_SPANS * (hi - lo) < 0.0
+    }
+
+    /// Whether a slip step keeps slipping by a wide margin, from the stages' normal forces and
+    /// tangential velocities alone: the slip -> stick function is mu dF_n/dt + s (k_t v_t +
+    /// c_t dv_t/dt) (linear spring), and while the contact point slides against the force
+    /// (s v_t < 0) its term k_t s v_t outweighs the rates' bounds (twice the largest
+    /// difference quotient between the stages' values, the sliding velocity's excursion
+    /// between stages included), then no sample can find stick, and its two evaluations of the
+    /// law (with the rates: two more off the disc) are skipped.
+    fn stays_slipping(&self, m: &Mode, step: &Step, start: &Eval) -> bool {
+        let Tan::Slip(sg) = m.tan else {
+            return false;
+        };
+        if self.model.mindlin {
+            return false;
+        }
+        let (k_t, _, c_t) = self.model.spring(0.0);
+        let h = step.h_len();
+        // (node, F_n, v_t) in the order of the nodes: the start, stages 2 ... 6, the end.
+        let mut at = [(0.0, start.forces.fy, start.v_t); 7];
+        for (i, &(f, v)) in step.slip_stages.iter().enumerate() {
+            at[i + 1] = (C[i + 1], f, v);
+        }
+        let (mut rate_f, mut rate_v, mut sliding) = (0.0f64, 0.0f64, f64::NEG_INFINITY);
+        for w in at.windows(2) {
+            let ((c0, f0, v0), (c1, f1, v1)) = (w[0], w[1]);
+            sliding = sliding.max(sg * v0).max(sg * v1);
+            // Nodes closer than 0.05 of the step (the last stage and the end, both at 1)
+            // carry their states' errors more than their rates.
+            if c1 - c0 >= 0.05 {
+                rate_f = rate_f.max((f1 - f0).abs() / ((c1 - c0) * h));
+                rate_v = rate_v.max((v1 - v0).abs() / ((c1 - c0) * h));
+            }
+        }
+        let (rate_f, rate_v) = (2.0 * rate_f, 2.0 * rate_v);
+        let widest_gap = 0.5 * h;
+        let bound = k_t * (sliding + rate_v * widest_gap) + self.mu * rate_f + c_t * rate_v;
+        bound < 0.0 && bound.is_finite()
     }
 
     /// The first switch of `ev` inside `step` from its function sampled at `parts` equal
