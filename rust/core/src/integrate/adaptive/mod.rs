@@ -62,7 +62,7 @@ pub use crate::model::scene::LOCAL_TOL_PER_TARGET;
 /// Factor on the local error estimates accumulated in quadrature that makes `err_est`: at the
 /// local tolerance [`LOCAL_TOL_PER_TARGET`] the 5 % quantile of err_est / error over the
 /// accuracy grid's largest steps and tolerances is 0.26 ... 4.3 at factor 0.5, so 4.5 times
-/// that puts err_est >= error in >= 98 % of impacts at every setting, within 9 ... 36 times it
+/// that puts err_est >= error in >= 99.9 % of impacts at every setting, within 9 ... 36 times it
 /// in the median (`tests/adaptive.rs`).
 pub const ERR_EST_FACTOR: f64 = 2.25;
 
