@@ -124,7 +124,7 @@ impl Reference<'_> {
     /// law's root (the area law's damping grows like t^(1/2), the Tsuji dashpot like
     /// t^(1/4)), `rho` the time since touch in units of the step. 1 for every other step.
     /// (Redoing the first four steps after touch as two halves and extrapolating their
-    /// difference, as before, cost 12 evaluations of the law per step, ~8 % of the disc's time
+    /// difference, as before, cost 12 evaluations of the law per step, ~6 % of the disc's time
     /// at tol 1e-6, and covered fewer of the grid's errors: >= 98.4 % against >= 99.9 %.)
     fn singular_factor(&self, m: &Mode, rho: Option<f64>, event: Option<Event>) -> f64 {
         if !self.singular_force(m) {
