@@ -133,11 +133,15 @@ impl Step {
 /// (separation). At least 1. E.g. p = 1/2: 37 for a step from touch, 5.1 for one starting a
 /// quarter of its length after it, 1.1 at one length; p = 1/4: 52, 5.8, 1.2.
 pub(super) fn root_error_ratio(p: f64, rho: f64, at_end: bool) -> f64 {
-    let f = |c: f64| {
-        let from_root = if at_end { 1.0 + rho - c } else { rho + c };
-        from_root.max(0.0).powf(p)
+    // x^p by square roots for the laws' two roots: powf at every stage of the steps near
+    // touch made this 7 % of the disc's instructions.
+    let root = |x: f64| match p {
+        0.5 => x.sqrt(),
+        0.25 => x.sqrt().sqrt(),
+        _ => x.powf(p),
     };
-    let exact = ((1.0 + rho).powf(p + 1.0) - rho.powf(p + 1.0)) / (p + 1.0);
+    let f = |c: f64| root((if at_end { 1.0 + rho - c } else { rho + c }).max(0.0));
+    let exact = ((1.0 + rho) * root(1.0 + rho) - rho * root(rho)) / (p + 1.0);
     let quadrature: f64 = (0..6).map(|i| A[6][i] * f(C[i])).sum();
     let embedded: f64 = (0..7).map(|i| E[i] * f(C[i])).sum();
     let ratio = ((exact - quadrature) / embedded).abs();
