@@ -196,7 +196,7 @@ impl Reference<'_> {
         // The spring elongation is not integrated outside stick (there it is algebraic).
         let err = (0..NS)
             .filter(|&i| i != XI || m.tan == Tan::Stick)
-            .map(|i| err_vec[i].abs() / (self.tol * self.scale[i]))
+            .map(|i| err_vec[i].abs() * self.error_weight[i])
             .fold(0.0, f64::max);
         let step = Step {
             y0: *y0,

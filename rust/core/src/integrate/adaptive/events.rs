@@ -556,7 +556,7 @@ mod tests {
                             model: ode.model,
                             verts: ode.verts,
                             mu: ode.mu,
-                            scale: ode.scale,
+                            error_weight: ode.error_weight,
                             tol: ode.tol,
                             fd_step: ode.fd_step / k,
                             force_tol: ode.force_tol,

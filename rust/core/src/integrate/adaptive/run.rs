@@ -727,7 +727,7 @@ impl<'a> Reference<'a> {
             model,
             verts,
             mu: model.scene.mu,
-            scale,
+            error_weight: scale.map(|sc| 1.0 / (opts.tol * sc)),
             tol: opts.tol,
             fd_step: 1e-5 * t_est,
             force_tol: opts.tol * model.mass * speed / t_est,
