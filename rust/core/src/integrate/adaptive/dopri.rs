@@ -167,14 +167,16 @@ impl Reference<'_> {
         // formed with the weights A[6], is y1.
         let mut y1 = *y0;
         for st in 1..7 {
-            let mut yi = *y0;
-            for i in 0..NS {
-                let mut acc = 0.0;
-                for j in 0..st {
-                    acc += A[st][j] * k[j][i];
+            // Component-wise over the stages before (the inner loop over the 10 components
+            // vectorises; summed per component over the stages it did not).
+            let mut acc = [0.0; NS];
+            for (j, kj) in k.iter().enumerate().take(st) {
+                let a = A[st][j];
+                for i in 0..NS {
+                    acc[i] += a * kj[i];
                 }
-                yi[i] += h * acc;
             }
+            let yi: State = std::array::from_fn(|i| y0[i] + h * acc[i]);
             self.eval_to(m, &yi, &mut k[st], &mut e);
             if pull.is_none() && m.clipped() && e.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
@@ -191,8 +193,13 @@ impl Reference<'_> {
                 (end, y1) = (e, yi);
             }
         }
-        let err_vec: State =
-            std::array::from_fn(|i| h * (0..7).map(|j| E[j] * k[j][i]).sum::<f64>());
+        let mut err_vec = [0.0; NS];
+        for (kj, e_j) in k.iter().zip(E) {
+            for i in 0..NS {
+                err_vec[i] += e_j * kj[i];
+            }
+        }
+        err_vec = err_vec.map(|x| h * x);
         // The spring elongation is not integrated outside stick (there it is algebraic).
         let err = (0..NS)
             .filter(|&i| i != XI || m.tan == Tan::Stick)
