@@ -131,14 +131,17 @@ fn reference_model(scene: &Scene) -> Result<Model> {
 // ---------------------------------------------------------------------------------------------
 // The state of the ODE
 
-/// x, y, phi, vx, vy, omega, xi, then the works of the elastic, damping and tangential forces.
+/// x, y, vx, vy, phi, omega, xi, then the works of the elastic, damping and tangential forces.
+/// (vx, vy) at the offset of a pair of components: the stages write the state in pairs, and
+/// the law reads the velocity as one; across a pair's boundary that read missed the store
+/// forwarding at every stage.
 const NS: usize = 10;
 type State = [f64; NS];
 const X: usize = 0;
 const Y: usize = 1;
-const PHI: usize = 2;
-const VX: usize = 3;
-const VY: usize = 4;
+const VX: usize = 2;
+const VY: usize = 3;
+const PHI: usize = 4;
 const OM: usize = 5;
 const XI: usize = 6;
 const W_EL: usize = 7;
