@@ -561,6 +561,8 @@ mod tests {
                             fd_step: ode.fd_step / k,
                             force_tol: ode.force_tol,
                             normal: ode.normal,
+                            inv_mass: ode.inv_mass,
+                            inv_inertia: ode.inv_inertia,
                         };
                         fine.differenced_rates(&m, &s, &d, &e)
                     };

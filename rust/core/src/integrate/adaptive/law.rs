@@ -40,6 +40,11 @@ pub(super) struct Reference<'a> {
     pub(super) force_tol: f64,
     /// The normal law's force on an overlap (the fixed-step path's).
     pub(super) normal: NormalForce,
+    /// 1 / mass and 1 / moment of inertia: the accelerations as products, since a division's
+    /// latency sat on the chain from one stage to the next.
+    pub(super) inv_mass: f64,
+    /// See `inv_mass`.
+    pub(super) inv_inertia: f64,
 }
 
 impl<'a> Reference<'a> {
@@ -212,9 +217,9 @@ impl<'a> Reference<'a> {
             Tan::Slip(sg) => (self.mu * f_n * sg, StickState::Slip),
         };
         let forces = Forces::on_overlap(o, s[Y], f_n, (f_el, f_d, x_el, x_damp), f_t, stick);
-        d[VX] = f_t / model.mass;
-        d[VY] = f_n / model.mass;
-        d[OM] = forces.torque / model.inertia;
+        d[VX] = f_t * self.inv_mass;
+        d[VY] = f_n * self.inv_mass;
+        d[OM] = forces.torque * self.inv_inertia;
         d[XI] = if m.tan == Tan::Stick { rate * v_t } else { 0.0 };
         (d[W_EL], d[W_D], d[W_T]) = forces.powers(s[Y], &v);
         let e = Eval {

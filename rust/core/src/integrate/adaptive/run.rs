@@ -732,6 +732,8 @@ impl<'a> Reference<'a> {
             fd_step: 1e-5 * t_est,
             force_tol: opts.tol * model.mass * speed / t_est,
             normal: NormalForce::new(model),
+            inv_mass: 1.0 / model.mass,
+            inv_inertia: 1.0 / model.inertia,
         };
         let lim = Limits {
             h_max,
