@@ -267,6 +267,9 @@ pub(crate) fn integrate(
     cancel: &Cancel,
 ) -> Result<Record> {
     let mut run = Run::new(model, init, depth_est, opts, trace);
+    // Where each attempted step and each step redone up to a switch are written (~1.4 kB
+    // each: returned by value, a step was copied twice per attempt).
+    let (mut step, mut redo) = (Step::blank(), Step::blank());
     let stop = loop {
         if run.cleared() || (run.mode.touch == Touch::Off && run.fly()) {
             break StopReason::Separated;
@@ -275,7 +278,7 @@ pub(crate) fn integrate(
         if let Some(stop) = run.budget_spent() {
             break stop;
         }
-        if let Some(stop) = run.attempt() {
+        if let Some(stop) = run.attempt(&mut step, &mut redo) {
             break stop;
         }
     };
@@ -469,10 +472,10 @@ impl<'a, 't> Run<'a, 't> {
 
     /// One attempted step: rejected (the next try is shorter) or taken up to the first
     /// switch inside it. Returns why the impact stops, if it does.
-    fn attempt(&mut self) -> Option<StopReason> {
+    fn attempt(&mut self, step: &mut Step, redo: &mut Step) -> Option<StopReason> {
         let h = self.capped_step();
         self.h = h;
-        let (step, err) = self.ode.dp_step(&self.mode, &self.s, &self.k1, h);
+        let err = self.ode.dp_step(&self.mode, &self.s, &self.k1, h, step);
         self.attempts += 1;
         let h_min = 1e-13 * self.lim.t_est;
         if !err.is_finite() {
@@ -489,7 +492,7 @@ impl<'a, 't> Run<'a, 't> {
             return None;
         }
         let h_next = h * step_factor(err);
-        let first = self.first_switch(&step);
+        let first = self.first_switch(step);
         if let Some(c) = step.pull.filter(|_| self.zero_pieces < MAX_ZERO_PIECES) {
             if first.is_none_or(|(th, _)| th > c) && h > h_min {
                 // The step crossed a clip switch that its dense output does not show: never
@@ -498,7 +501,7 @@ impl<'a, 't> Run<'a, 't> {
                 return None;
             }
         }
-        self.take(&step, first, h_next);
+        self.take(step, redo, first, h_next);
         None
     }
 
@@ -542,7 +545,7 @@ impl<'a, 't> Run<'a, 't> {
 
     /// Takes the accepted `step` up to its first switch (all of it if none), switches the
     /// mode there and prepares the next step (`h_next` the error control's proposal).
-    fn take(&mut self, step: &Step, first: Option<(f64, Event)>, h_next: f64) {
+    fn take(&mut self, step: &Step, redo: &mut Step, first: Option<(f64, Event)>, h_next: f64) {
         let (h, mode_step) = (self.h, self.mode);
         let (s_new, h_taken, event, err_taken) = match first {
             None => (step.y1, h, None, step.err),
@@ -550,8 +553,9 @@ impl<'a, 't> Run<'a, 't> {
             Some((th, ev)) if th * h <= 0.0 => (self.s, 0.0, Some(ev), [0.0; NS]),
             Some((th, ev)) => {
                 // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
-                let (st, _) = self.ode.dp_step(&self.mode, &self.s, &self.k1, th * h);
-                (st.y1, th * h, Some(ev), st.err)
+                self.ode
+                    .dp_step(&self.mode, &self.s, &self.k1, th * h, redo);
+                (redo.y1, th * h, Some(ev), redo.err)
             }
         };
         let from_touch = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
