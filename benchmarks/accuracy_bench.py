@@ -6,7 +6,7 @@ Grid: theta 4..89 deg every 1 deg x mu 0, 0.1 ... 1 (946 impacts), on the exact 
 (``Scene.paper()``). Errors of e_N and e_T against a tight reference on the same shape:
 ``integrator="reference"`` (the adaptive path at its tightest tolerance, 1e-12) with largest
 step ``dt_factor=0.2``. Cost: wall time of ``restitution.sweep(..., threads=1)`` per impact
-(best of ``--repeat`` runs, ``time.perf_counter``), so it includes the Python side of a sweep
+(best of ``--repeat`` rounds, each timing every configuration once in turn, ``time.perf_counter``), so it includes the Python side of a sweep
 (building the cases' columns and the polars frame).
 
 Prints, per shape, the table of issue 13 (us/impact, mean steps, median / max |de_N| and
@@ -67,17 +67,21 @@ def grid(theta, mu, tiles: int) -> pl.DataFrame:
     return pl.concat([one] * tiles)
 
 
-def timed(scene: rs.Scene, cases: pl.DataFrame, repeat: int) -> tuple[pl.DataFrame, float]:
-    """The sweep's rows and its best wall time per impact (us) over ``repeat`` runs. The cases
-    are the grid tiled to a few thousand impacts, so that a sweep call's own overhead (its checks
-    of the scene, ~ms) is spread thin; the per-case work of the Python side stays in."""
-    best, df = float("inf"), None
+def best_times(runs: list[tuple[rs.Scene, pl.DataFrame]], repeat: int) -> list[tuple[pl.DataFrame, float]]:
+    """Each run's sweep rows and its best wall time per impact (us) over ``repeat`` rounds. A
+    round times every run once, in turn: a burst of load on a shared machine then slows one
+    round of every configuration rather than every round of one (timed back to back, one
+    configuration once came out 1.5 times slower than in the runs before and after). The cases
+    are the grid tiled to a few thousand impacts, so that a sweep call's own overhead (its
+    checks of the scene, ~ms) is spread thin; the per-case work of the Python side stays in."""
+    best = [float("inf")] * len(runs)
+    frames: list[pl.DataFrame | None] = [None] * len(runs)
     for _ in range(repeat):
-        start = time.perf_counter()
-        df = rs.sweep(scene, cases=cases, threads=1)
-        best = min(best, time.perf_counter() - start)
-    assert df is not None
-    return df, 1e6 * best / df.height
+        for i, (scene, cases) in enumerate(runs):
+            start = time.perf_counter()
+            frames[i] = rs.sweep(scene, cases=cases, threads=1)
+            best[i] = min(best[i], time.perf_counter() - start)
+    return [(df, 1e6 * t / df.height) for df, t in zip(frames, best) if df is not None]
 
 
 def label(integrator: str, setting: dict) -> tuple[str, float, str]:
@@ -92,23 +96,26 @@ def measure(shape: str, settings, theta, mu, repeat: int, min_impacts: int) -> l
     base = base_scene(shape)
     one = grid(theta, mu, 1)
     ref = rs.sweep(base.replace(integrator="reference", dt_factor=REF_STEP), cases=one, threads=1)
-    rows = []
-    for integrator, runs in settings.items():
-        for setting in runs:
+    configs, runs = [], []
+    for integrator, values in settings.items():
+        for setting in values:
             scene = base.replace(integrator=integrator, **setting)
             # Slow settings (gear5 at 0.001 on the 120-gon: ~20 ms per impact) run the grid once.
             probe = rs.sweep(scene, cases=one, threads=1)
             tiles = max(1, -(-min_impacts // one.height)) if probe["steps"].mean() < 5000 else 1
-            df, cost = timed(scene, grid(theta, mu, tiles), repeat)
-            df = df.head(one.height)
-            d_n = (df["e_n"] - ref["e_n"]).abs().to_numpy()
-            # e_T is undefined only at theta = 90, outside this grid.
-            d_t = (df["e_t"] - ref["e_t"]).abs().to_numpy()
-            name, value, shown = label(integrator, setting)
-            rows.append(dict(shape=shape, integrator=name, value=value, method=f"{name} {shown}", us=cost,
-                             steps=float(df["steps"].mean()), med_dn=float(np.median(d_n)), max_dn=float(d_n.max()),
-                             med_dt=float(np.median(d_t)), max_dt=float(d_t.max()),
-                             timed_out=int(df["timed_out"].sum())))
+            configs.append((integrator, setting))
+            runs.append((scene, grid(theta, mu, tiles)))
+    rows = []
+    for (integrator, setting), (df, cost) in zip(configs, best_times(runs, repeat)):
+        df = df.head(one.height)
+        d_n = (df["e_n"] - ref["e_n"]).abs().to_numpy()
+        # e_T is undefined only at theta = 90, outside this grid.
+        d_t = (df["e_t"] - ref["e_t"]).abs().to_numpy()
+        name, value, shown = label(integrator, setting)
+        rows.append(dict(shape=shape, integrator=name, value=value, method=f"{name} {shown}", us=cost,
+                         steps=float(df["steps"].mean()), med_dn=float(np.median(d_n)), max_dn=float(d_n.max()),
+                         med_dt=float(np.median(d_t)), max_dt=float(d_t.max()),
+                         timed_out=int(df["timed_out"].sum())))
     return rows
 
 
@@ -155,7 +162,7 @@ def report(shape: str, rows: list[dict]) -> None:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--quick", action="store_true", help="a small grid, the disc only, one run each")
-    p.add_argument("--repeat", type=int, default=3, help="runs per configuration, best taken (default 3)")
+    p.add_argument("--repeat", type=int, default=3, help="rounds over all configurations, best taken (default 3)")
     p.add_argument("--shapes", nargs="+", default=None, choices=("disc", "120"), help="default: both")
     args = p.parse_args()
     if args.quick:
