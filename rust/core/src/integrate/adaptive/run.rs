@@ -278,6 +278,9 @@ pub(crate) fn integrate(
         if let Some(stop) = run.budget_spent() {
             break stop;
         }
+        if run.coast() {
+            continue;
+        }
         if let Some(stop) = run.attempt(&mut step, &mut redo) {
             break stop;
         }
@@ -425,6 +428,43 @@ impl<'a, 't> Run<'a, 't> {
             self.t - self.tally.contact_start
         };
         self.tally.contact_time + ongoing
+    }
+
+    /// A disc's or sphere's clipped tail: jumps to separation; true if it did. Once the
+    /// unclipped force F_el + F_d has turned negative (the damper pulling while the body
+    /// rises, v_y > 0) no force acts, so the body moves uniformly and the depth falls; the
+    /// damper's share then grows (the area law: F_el ~ delta^(3/2) against F_d ~
+    /// delta^(1/2) v_y; the linear law: kn delta against cn v_y; Hertz: delta^(3/2) against
+    /// delta^(1/4) v_y; the lever arms are zero on the centre line), so the clip cannot
+    /// switch on again and separation comes at y = r, in closed form. Stepped instead, the
+    /// tail took a few Runge-Kutta steps, a located switch and a step redone up to it.
+    /// Not where the jump would pass the contact-time budget.
+    fn coast(&mut self) -> bool {
+        let (m, s, r) = (&self.mode, &self.s, self.ode.model.r);
+        if m.touch != Touch::Disc || m.clip_on || m.clip_hold || !(s[VY] > 0.0) {
+            return false;
+        }
+        let t_sep = ((r - s[Y]) / s[VY]).max(0.0);
+        if !(self.contact_time() + t_sep < self.lim.t_end) {
+            return false;
+        }
+        for (q, dq) in [(X, VX), (PHI, OM)] {
+            self.s[q] += self.s[dq] * t_sep;
+        }
+        self.s[Y] = r;
+        self.t += t_sep;
+        self.steps += 1;
+        self.attempts += 1;
+        apply(
+            &self.ode,
+            &mut self.mode,
+            Event::Separate,
+            &mut self.s,
+            self.t,
+            &mut self.tally,
+        );
+        self.refresh(t_sep, None);
+        true
     }
 
     /// In free flight: jumps over it by conservative advancement (see [`flight`]), each
