@@ -220,7 +220,7 @@ fn deepest_disc(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
 /// line, it costs the other steps nothing.
 #[inline(never)]
 fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
-    let v_y = |th: f64| step.at(th)[VY];
+    let v_y = |th: f64| step.component_at(th, VY);
     let v_end = if frac == 1.0 { step.y1[VY] } else { v_y(frac) };
     if v_end <= 0.0 {
         return;
