@@ -65,7 +65,9 @@ const D: [f64; 7] = [
 /// The nodes c_i of the stages (fractions of the step at which each stage is evaluated).
 pub(super) const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
 
-/// One accepted Runge-Kutta step with what its dense output needs.
+/// One accepted Runge-Kutta step with what its dense output needs (`Default`: a blank one for
+/// [`Reference::dp_step`] to write into).
+#[derive(Default)]
 pub(super) struct Step {
     pub(super) y0: State,
     pub(super) y1: State,
@@ -92,22 +94,6 @@ pub(super) struct Step {
 }
 
 impl Step {
-    /// A step to be written by [`Reference::dp_step`].
-    pub(super) fn blank() -> Step {
-        Step {
-            y0: [0.0; NS],
-            y1: [0.0; NS],
-            k: [[0.0; NS]; 7],
-            h: 0.0,
-            err: [0.0; NS],
-            pull: None,
-            stick_span: (0.0, 0.0),
-            slip_stages: [(0.0, 0.0); 6],
-            dense: std::cell::OnceCell::new(),
-            end: Eval::default(),
-        }
-    }
-
     /// The step's length.
     pub(super) fn h_len(&self) -> f64 {
         self.h

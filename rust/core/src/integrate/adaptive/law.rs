@@ -4,7 +4,7 @@
 use super::piece::{Mode, Tan, Touch};
 use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::shape::crossing_x;
-use crate::geometry::shape::{disc_segment_at, sphere_contact};
+use crate::geometry::shape::disc_segment_at;
 use crate::geometry::{Overlap, Shape};
 use crate::law::{carrying, trial_force, vertex_springs, Forces, NormalForce, StickState};
 use crate::model::{Model, NormalLaw};
@@ -143,14 +143,15 @@ impl<'a> Reference<'a> {
                 let r = self.model.r;
                 let depth = r - y;
                 Some(match self.model.scene.shape {
+                    // The disc's segment built from its numbers, not through an Option (see
+                    // `disc_segment_at`).
                     Shape::Disc { .. } if depth > 0.0 => disc_segment_at(r, y, depth),
-                    Shape::Sphere { .. } if depth > 0.0 => sphere_contact(r, y).unwrap_or_default(),
                     // Beyond the separation point the contact continues as nothing.
-                    _ => Overlap {
+                    ref shape => shape.overlap(y, phi).unwrap_or(Overlap {
                         cy: y - r,
                         depth,
                         ..Overlap::default()
-                    },
+                    }),
                 })
             }
             Touch::Poly { first, len, low } => Some(self.held_polygon(first, len, low, y, phi)),

@@ -269,7 +269,7 @@ pub(crate) fn integrate(
     let mut run = Run::new(model, init, depth_est, opts, trace);
     // Where each attempted step and each step redone up to a switch are written (~1.4 kB
     // each: returned by value, a step was copied twice per attempt).
-    let (mut step, mut redo) = (Step::blank(), Step::blank());
+    let (mut step, mut redo) = (Step::default(), Step::default());
     let stop = loop {
         if run.cleared() || (run.mode.touch == Touch::Off && run.fly()) {
             break StopReason::Separated;
@@ -441,20 +441,19 @@ impl<'a, 't> Run<'a, 't> {
     /// Not where the jump would pass the contact-time budget.
     fn coast(&mut self) -> bool {
         let (m, s, r) = (&self.mode, &self.s, self.ode.model.r);
-        if m.touch != Touch::Disc || m.clip_on || m.clip_hold || !(s[VY] > 0.0) {
+        // Written as the conditions to hold, so that a NaN fails them.
+        let rising = s[VY] > 0.0;
+        if m.touch != Touch::Disc || m.clip_on || m.clip_hold || !rising {
             return false;
         }
         let t_sep = ((r - s[Y]) / s[VY]).max(0.0);
-        if !(self.contact_time() + t_sep < self.lim.t_end) {
+        let within_budget = self.contact_time() + t_sep < self.lim.t_end;
+        if !within_budget {
             return false;
         }
-        for (q, dq) in [(X, VX), (PHI, OM)] {
-            self.s[q] += self.s[dq] * t_sep;
-        }
+        self.drift(t_sep, 1);
+        // Exactly at separation, where y + v_y t_sep may round either side of r.
         self.s[Y] = r;
-        self.t += t_sep;
-        self.steps += 1;
-        self.attempts += 1;
         apply(
             &self.ode,
             &mut self.mode,
@@ -482,14 +481,19 @@ impl<'a, 't> Run<'a, 't> {
             flight::Jump::To(t) => (t, false),
             flight::Jump::Clear(t) => (t, true),
         };
-        for (q, dq) in [(X, VX), (Y, VY), (PHI, OM)] {
-            self.s[q] += self.s[dq] * t_jump;
-        }
-        self.t += t_jump;
-        self.steps += advances;
-        self.attempts += advances;
+        self.drift(t_jump, advances);
         self.refresh(t_jump, None);
         done
+    }
+
+    /// Moves the body uniformly for `dt` (no force acts), counting `advances` steps.
+    fn drift(&mut self, dt: f64, advances: u64) {
+        for (q, dq) in [(X, VX), (Y, VY), (PHI, OM)] {
+            self.s[q] += self.s[dq] * dt;
+        }
+        self.t += dt;
+        self.steps += advances;
+        self.attempts += advances;
     }
 
     /// The step to try: the next one, within the largest and the caps of the state.
