@@ -6,8 +6,9 @@ Grid: theta 4..89 deg every 1 deg x mu 0, 0.1 ... 1 (946 impacts), on the exact 
 (``Scene.paper()``). Errors of e_N and e_T against a tight reference on the same shape:
 ``integrator="reference"`` (the adaptive path at its tightest tolerance, 1e-12) with largest
 step ``dt_factor=0.2``. Cost: wall time of ``restitution.sweep(..., threads=1)`` per impact
-(best of ``--repeat`` rounds, each timing every configuration once in turn, ``time.perf_counter``), so it includes the Python side of a sweep
-(building the cases' columns and the polars frame).
+(best of ``--repeat`` rounds, each timing every configuration once in turn,
+``time.perf_counter``), so it includes the Python side of a sweep (building the cases' columns
+and the polars frame).
 
 Prints, per shape, the table of issue 13 (us/impact, mean steps, median / max |de_N| and
 |de_T|), the ratios the issue targets (disc: adaptive tol 1e-6 / gear5 0.01 <= 0.25 and
@@ -81,6 +82,7 @@ def best_times(runs: list[tuple[rs.Scene, pl.DataFrame]], repeat: int) -> list[t
             start = time.perf_counter()
             frames[i] = rs.sweep(scene, cases=cases, threads=1)
             best[i] = min(best[i], time.perf_counter() - start)
+    assert all(df is not None for df in frames), "--repeat must be at least 1"
     return [(df, 1e6 * t / df.height) for df, t in zip(frames, best) if df is not None]
 
 
