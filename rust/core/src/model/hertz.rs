@@ -15,7 +15,7 @@
 //! steps of at most 1/20 of the time to touch or to leave, from 1e-9 at touch, where the force is
 //! not smooth, to 1e-3; the end,
 //! where the clipped force reaches zero, located by bisection of the last step) and inverting
-//! e(beta) by the ITP method (`integrate::roots`). Accuracy of e(beta): ~1e-11 (halving the
+//! e(beta) by Brent's method (`integrate::roots`). Accuracy of e(beta): ~1e-11 (halving the
 //! steps moves it by < 3e-12); beta is found to 1e-13 of itself (|e(beta) - cor| <= 1e-15 over
 //! cor 0.01 ... 0.999). A sweep varies cor rarely, so the last value is cached per thread.
 
@@ -123,7 +123,7 @@ pub fn beta_for_cor(cor: f64) -> f64 {
 }
 
 /// The root of e(beta) - cor, bracketed from the linear-spring guess and closed by the
-/// project's one root finder ([`roots::bracket`], the ITP method) to 1e-13 of beta (e falls by
+/// project's one root finder ([`roots::bracket`], Brent's method) to 1e-13 of beta (e falls by
 /// at most ~1 per unit of beta).
 fn invert(cor: f64) -> f64 {
     let g = |b: f64| restitution_for_beta(b) - cor;
