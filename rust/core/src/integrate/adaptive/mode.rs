@@ -56,19 +56,23 @@ impl Reference<'_> {
     }
 }
 
-/// Switches the mode at an event and sets the algebraic part of the state.
+/// Switches the mode at an event and sets the algebraic part of the state. `known`: the
+/// evaluation at `s` in the mode before the switch, where the caller has it (the last stage of
+/// the step that ends there); only the tangential switches and the clip's switching off read
+/// it, and evaluate it themselves where it is not known (a corner entering or leaving, a
+/// polygon's most frequent switches, evaluated it for nothing). Out of line: a few calls per
+/// impact, where inlined into the loop of steps it cost every step instructions.
+#[inline(never)]
 pub(super) fn apply(
     ode: &Reference,
     m: &mut Mode,
     ev: Event,
     s: &mut State,
-    t: f64,
+    (t, known): (f64, Option<&Eval>),
     tally: &mut Tally,
 ) {
-    let model = ode.model;
     let n = ode.verts.len().max(1);
-    let e = ode.eval(m, s).1;
-    let (kt, _, ct) = model.spring(e.depth);
+    let before = |m: &Mode, s: &State| known.copied().unwrap_or_else(|| ode.eval(m, s).1);
     match ev {
         Event::Touch => {
             m.touch = ode.touch_mode(s[Y], s[PHI]);
@@ -99,24 +103,28 @@ pub(super) fn apply(
             }
         }
         Event::ClipOff => {
-            m.clip_on = false;
             if ode.mu > 0.0 {
+                let e = before(m, s);
+                let (kt, _, ct) = ode.model.spring(e.depth);
                 m.tan = Tan::Free;
                 s[XI] = carrying(0.0, kt, ct, e.v_t);
             }
+            m.clip_on = false;
         }
         Event::ClipOn => {
             m.clip_on = true;
             m.tan = ode.initial_tan(m, s);
         }
         Event::ToSlip => {
-            start_slip(ode, m, s, &e);
+            start_slip(ode, m, s, &before(m, s));
             if tally.stuck {
                 tally.slip_events += 1;
             }
         }
         Event::ToStick => {
             // The spring takes over the force it carried while slipping.
+            let e = before(m, s);
+            let (kt, _, ct) = ode.model.spring(e.depth);
             s[XI] = carrying(e.forces.f_t, kt, ct, e.v_t);
             m.tan = Tan::Stick;
         }

@@ -459,7 +459,7 @@ impl<'a, 't> Run<'a, 't> {
             &mut self.mode,
             Event::Separate,
             &mut self.s,
-            self.t,
+            (self.t, None),
             &mut self.tally,
         );
         self.refresh(t_sep, None);
@@ -591,15 +591,16 @@ impl<'a, 't> Run<'a, 't> {
     /// mode there and prepares the next step (`h_next` the error control's proposal).
     fn take(&mut self, step: &Step, redo: &mut Step, first: Option<(f64, Event)>, h_next: f64) {
         let (h, mode_step) = (self.h, self.mode);
-        let (s_new, h_taken, event, err_taken) = match first {
-            None => (step.y1, h, None, step.err),
-            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev), step.err),
-            Some((th, ev)) if th * h <= 0.0 => (self.s, 0.0, Some(ev), [0.0; NS]),
+        // The state where the piece ends and the evaluation there in the piece's mode.
+        let (s_new, h_taken, event, err_taken, e_new) = match first {
+            None => (step.y1, h, None, step.err, Some(&step.end)),
+            Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev), step.err, Some(&step.end)),
+            Some((th, ev)) if th * h <= 0.0 => (self.s, 0.0, Some(ev), [0.0; NS], None),
             Some((th, ev)) => {
                 // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
                 self.ode
                     .dp_step(&self.mode, &self.s, &self.k1, th * h, redo);
-                (redo.y1, th * h, Some(ev), redo.err)
+                (redo.y1, th * h, Some(ev), redo.err, Some(&redo.end))
             }
         };
         let from_touch = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
@@ -631,6 +632,7 @@ impl<'a, 't> Run<'a, 't> {
         self.t += h_taken;
         self.s = s_new;
         self.end_clip_hold();
+        let e_new = e_new.filter(|_| self.mode == mode_step);
         if let Some(ev) = event {
             if ev == Event::Touch {
                 (self.fresh_touch, self.t_touch) = (true, self.t);
@@ -640,7 +642,7 @@ impl<'a, 't> Run<'a, 't> {
                 &mut self.mode,
                 ev,
                 &mut self.s,
-                self.t,
+                (self.t, e_new),
                 &mut self.tally,
             );
         }
