@@ -219,6 +219,25 @@ impl Reference<'_> {
         (dfn, (damping(&ep) - damping(&em)) / (2.0 * h))
     }
 
+    /// Event `ev`'s function at fraction `th` of `step`, on its dense output. The touch's,
+    /// separation's and a corner's read only the height and the orientation: those two
+    /// components alone (a polygon samples its corners entering at eight points of every
+    /// step), the others the whole state.
+    fn value_at(&self, m: &Mode, ev: Event, step: &Step, th: f64) -> f64 {
+        let geometric = !matches!(
+            ev,
+            Event::ClipOff | Event::ClipOn | Event::ToSlip | Event::ToStick
+        );
+        if geometric {
+            let mut s = step.y0;
+            s[Y] = step.component_at(th, Y);
+            s[PHI] = step.component_at(th, PHI);
+            self.event_value(m, ev, &s)
+        } else {
+            self.event_value(m, ev, &step.at(th))
+        }
+    }
+
     /// Fraction of `step` at which event `ev` first fires (its function turns positive),
     /// given that it fires at the end, located on the dense output.
     pub(super) fn locate(&self, m: &Mode, ev: Event, step: &Step, g1: f64) -> f64 {
@@ -241,7 +260,7 @@ impl Reference<'_> {
         (lo, g_lo): (f64, Option<f64>),
         (hi, g_hi): (f64, f64),
     ) -> f64 {
-        let g = |th: f64| self.event_value(m, ev, &step.at(th));
+        let g = |th: f64| self.value_at(m, ev, step, th);
         let g0 = g_lo.unwrap_or_else(|| {
             if lo == 0.0 {
                 self.event_value(m, ev, &step.y0)
@@ -285,7 +304,7 @@ impl Reference<'_> {
     ) -> Option<f64> {
         let mut before = (0.0, None);
         for (th, known) in at {
-            let g = known.unwrap_or_else(|| self.event_value(m, ev, &step.at(th)));
+            let g = known.unwrap_or_else(|| self.value_at(m, ev, step, th));
             if g > 0.0 {
                 return Some(self.locate_in(m, ev, step, before, (th, g)));
             }
@@ -403,7 +422,7 @@ impl Reference<'_> {
             g[k] = if k == parts {
                 g1
             } else {
-                self.event_value(m, ev, &step.at(k as f64 * w))
+                self.value_at(m, ev, step, k as f64 * w)
             };
             if g[k] > 0.0 {
                 let before = if k == 1 { g0() } else { g[k - 1] };
@@ -420,7 +439,7 @@ impl Reference<'_> {
             1
         };
         let k = first + grazes(&g[first..=parts])?;
-        let value = |th: f64| self.event_value(m, ev, &step.at(th));
+        let value = |th: f64| self.value_at(m, ev, step, th);
         let positive = std::cell::Cell::new(None);
         let (lo, hi) = ((k - 1) as f64 * w, (k + 1) as f64 * w);
         roots::peak(
