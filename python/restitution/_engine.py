@@ -110,9 +110,29 @@ def dt_bounds(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None,
 
 
 def records_frame(raw: Mapping[str, np.ndarray]) -> pl.DataFrame:
-    """Record columns as a polars frame; an undefined value (``<name>_valid`` false) is null, never NaN."""
-    frame = pl.DataFrame({name: raw[name] for name in RECORD_COLUMNS})
-    optional = [name for name in RECORD_COLUMNS if f"{name}_valid" in raw]
-    return frame.with_columns(
-        pl.when(pl.Series(raw[f"{name}_valid"])).then(pl.col(name)).otherwise(None).alias(name) for name in optional
-    )
+    """Record columns as a polars frame; an undefined value (``<name>_valid`` false) is null, never NaN.
+
+    Built from one Series per column, nulls scattered into the optional ones: a frame from the
+    dict of columns with the nulls set by a ``when/then`` query took 0.35-0.4 ms per call, most
+    of a one-impact :func:`restitution.simulate` and a fixed cost of every sweep chunk (0.24 ms now).
+    """
+    return pl.DataFrame([_record_series(raw, name) for name in RECORD_COLUMNS])
+
+
+def _record_series(raw: Mapping[str, np.ndarray], name: str) -> pl.Series:
+    series = pl.Series(name, raw[name])
+    valid = raw.get(f"{name}_valid")
+    if valid is None or valid.all():
+        return series
+    return series.scatter(np.flatnonzero(~valid), None)
+
+
+def record_values(raw: Mapping[str, np.ndarray], i: int) -> dict[str, Any]:
+    """Row ``i`` of the record columns as plain Python values (None where undefined), without a
+    frame: what :func:`restitution.simulate` returns for its one impact."""
+    out: dict[str, Any] = {}
+    for name in RECORD_COLUMNS:
+        valid = raw.get(f"{name}_valid")
+        value = raw[name][i]
+        out[name] = None if valid is not None and not valid[i] else (value.item() if isinstance(value, np.generic) else value)
+    return out

@@ -107,5 +107,4 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
             raw, trace_frame = _engine.run(cols, scene.template_vertices(), 1), None
     except _engine.RestitutionError as err:
         raise err.at_case(None) from None  # one impact: no case to name
-    row = _engine.records_frame(raw).row(0, named=True)
-    return Record(theta_deg=theta, omega_in=omega, trace=trace_frame, **{k: row[k] for k in _engine.RECORD_COLUMNS})
+    return Record(theta_deg=theta, omega_in=omega, trace=trace_frame, **_engine.record_values(raw, 0))
