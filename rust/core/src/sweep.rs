@@ -2,7 +2,7 @@
 //! [`simulate`](crate::simulate) call, so results do not depend on the thread count.
 
 use crate::cancel::Cancel;
-use crate::error::{Error, Result};
+use crate::error::Error;
 use crate::impact::{simulate_cancellable, Record};
 use crate::model::scene::{scene_from_columns_with, shape_columns};
 use crate::model::{check_case, Initial, Scene, CASE_COLUMNS};
@@ -42,26 +42,29 @@ pub fn cases_from_rows(
     Ok(out)
 }
 
-/// Runs `work` on `threads` threads (0: rayon's default pool).
-fn on_threads<T: Send>(threads: usize, work: impl FnOnce() -> T + Send) -> T {
-    if threads == 0 {
-        return work();
-    }
-    match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
-        Ok(pool) => pool.install(work),
-        Err(_) => work(),
+/// `f` of every case, in order, on `threads` threads (0: rayon's default pool). One thread maps
+/// them on the calling thread: a pool of one built for each call cost ~50 us, most of a
+/// one-impact `restitution.simulate` once its record was no longer built through a frame.
+fn map_cases<R: Send>(
+    cases: &[Case],
+    threads: usize,
+    f: impl Fn(&Case) -> R + Sync + Send,
+) -> Vec<R> {
+    let parallel = || cases.par_iter().map(&f).collect();
+    match threads {
+        0 => parallel(),
+        1 => cases.iter().map(&f).collect(),
+        _ => match rayon::ThreadPoolBuilder::new().num_threads(threads).build() {
+            Ok(pool) => pool.install(parallel),
+            Err(_) => parallel(),
+        },
     }
 }
 
 /// Checks every rule of every case without running it ([`check_case`]), in parallel; the
 /// error of the first failing case comes with its index.
 pub fn check_cases(cases: &[Case], threads: usize) -> std::result::Result<(), (usize, Error)> {
-    let results = on_threads(threads, || {
-        cases
-            .par_iter()
-            .map(|c| check_case(&c.scene, &c.init))
-            .collect::<Vec<Result<()>>>()
-    });
+    let results = map_cases(cases, threads, |c| check_case(&c.scene, &c.init));
     results
         .into_iter()
         .enumerate()
@@ -87,18 +90,12 @@ pub fn run_cases_cancellable(
     threads: usize,
     cancel: &Cancel,
 ) -> std::result::Result<Vec<Record>, (usize, Error)> {
-    let work = || {
-        cases
-            .par_iter()
-            .map(|c| {
-                if cancel.is_cancelled() {
-                    return Err(Error::Interrupted);
-                }
-                simulate_cancellable(&c.scene, &c.init, cancel)
-            })
-            .collect::<Vec<Result<Record>>>()
-    };
-    let results = on_threads(threads, work);
+    let results = map_cases(cases, threads, |c| {
+        if cancel.is_cancelled() {
+            return Err(Error::Interrupted);
+        }
+        simulate_cancellable(&c.scene, &c.init, cancel)
+    });
     if let Some(i) = results
         .iter()
         .position(|r| matches!(r, Err(Error::Interrupted)))
