@@ -282,7 +282,7 @@ impl Reference<'_> {
     /// step, as every switch of the reference (1e-14 moved its records by <= 2e-12 for ~5
     /// more evaluations per switch; 1e-6 instead of 1e-10 saves ~3 % of the adaptive path's
     /// time on the disc at tol 1e-6).
-    fn switch_precision(&self, ev: Event) -> f64 {
+    pub(super) fn switch_precision(&self, ev: Event) -> f64 {
         let jumps = matches!(ev, Event::Touch | Event::EnterLeft | Event::EnterRight);
         if jumps && self.linear().is_some() {
             1e-10
