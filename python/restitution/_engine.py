@@ -134,5 +134,8 @@ def record_values(raw: Mapping[str, np.ndarray], i: int) -> dict[str, Any]:
     for name in RECORD_COLUMNS:
         valid = raw.get(f"{name}_valid")
         value = raw[name][i]
-        out[name] = None if valid is not None and not valid[i] else (value.item() if isinstance(value, np.generic) else value)
+        if valid is not None and not valid[i]:
+            out[name] = None
+        else:  # numpy scalars as Python ones; `stop` is a list of str already
+            out[name] = value.item() if isinstance(value, np.generic) else value
     return out

@@ -5,8 +5,8 @@
 /// Evaluations without the bracket halving after which [`bracket`] bisects: so never more than
 /// four per halving, four times bisection's count at worst. (Brent's own safeguard, a step
 /// shorter than half the one before last, bounds the count only by about its square: a triple
-/// root took 138 evaluations to 1e-14 of its bracket; 136 with this bound, which tightened to
-/// two cost the smooth switches of the adaptive path 10 % more evaluations.)
+/// root takes 141 evaluations to 1e-14 of its bracket without this bound, 138 with it, which
+/// tightened to two cost the smooth switches of the adaptive path 10 % more evaluations.)
 const SLOW: u32 = 3;
 
 /// The shortest step of [`bracket`], relative to half the width asked for (and never below the
@@ -16,9 +16,9 @@ const SLOW: u32 = 3;
 /// where the ITP method before had landed within ~1e-10, and the clip of a damper far
 /// stiffer than the contact, a sliding mode, switched on and off in pieces too long for the
 /// chatter remedy (8 of the extremes benchmark's 10^4 scenes ran out of steps instead of
-/// separating in 200-42 000). A thousandth of it costs no evaluations on the disc grid
-/// (11.6 per impact at tol 1e-4 against 13.1, 15.4 against 16.8 at 1e-6, 35.8 against 34.4
-/// at 1e-9).
+/// separating in 200-42 000). A thousandth of it costs about one evaluation per impact on
+/// the disc grid (11.6 at tol 1e-4, 15.4 at 1e-6 and 35.8 at 1e-9 against 10.7, 14.3 and
+/// 32.3 with half the width; 1e-2 kept the 8 scenes too, 1e-1 lost one again).
 const NUDGE: f64 = 1e-3;
 
 /// The final bracket `(near, far)` of a change of sign of `g` between `lo` (value `g_lo`) and
@@ -31,11 +31,11 @@ const NUDGE: f64 = 1e-3;
 /// kept well inside the bracket and shorter than half the step before last, else bisection
 /// (and bisection after [`SLOW`] evaluations without the bracket halving); a step is never
 /// shorter than [`NUDGE`] times half the width, so a convergence from one side closes the
-/// bracket with one short step across the root. Smooth functions take 5 to 10 evaluations from a bracket of one step
-/// to 1e-14 of it. The ITP method it replaces (interpolate, truncate, project: regula falsi
-/// nudged towards the midpoint at every step) took 10 to 25, and 7.6 per switch of the
-/// adaptive path on the disc grid at tol 1e-6 against 4.9 now: 5k fewer instructions per
-/// impact, a sixth of that path's fixed cost. Non-finite values (an event function that is
+/// bracket with one short step across the root. Smooth functions take 5 to 10 evaluations
+/// from a bracket of one step to 1e-14 of it. The ITP method it replaces (interpolate,
+/// truncate, project: regula falsi nudged towards the midpoint at every step) took 10 to 25,
+/// and 7.6 per switch of the adaptive path on the disc grid at tol 1e-6 against 4.9 now: 5k
+/// fewer instructions per impact, a sixth of that path's fixed cost. Non-finite values (an event function that is
 /// -inf where its switch cannot happen) bisect.
 pub(crate) fn bracket(
     g: impl Fn(f64) -> f64,
@@ -254,7 +254,7 @@ mod tests {
     fn hard_roots_fall_back_to_bisection_in_bounded_evaluations() {
         // Where interpolation converges slowly or not at all (a triple root, a root where the
         // function is singular, a steep front): at most four evaluations per halving of the
-        // bracket (bisection's 47 and one, four times; the triple root takes 136).
+        // bracket (bisection's 47 and one, four times; the triple root takes 138).
         let cases: [(&dyn Fn(f64) -> f64, f64); 3] = [
             (&|x: f64| (x - 1.0 / 3.0).powi(3), 1.0 / 3.0),
             (&|x: f64| x.sqrt() - 1e-3, 1e-6),
