@@ -1,8 +1,9 @@
 //! Interrupting a running impact or sweep from another thread (a Ctrl-C watcher).
 //!
 //! The integration loops poll the token every [`POLL_STEPS`] steps (one relaxed atomic load,
-//! measured to cost nothing: see `benches/impact.rs`) and return [`Error::Interrupted`]
-//! (crate::Error::Interrupted) once it is set; a sweep stops all its workers the same way.
+//! measured to cost nothing: see `benches/impact.rs`) and return
+//! [`Error::Interrupted`](crate::error::Error::Interrupted) once it is set; a sweep stops all its
+//! workers the same way.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -47,9 +48,9 @@ impl Cancel {
     /// `Err(Error::Interrupted)` once the token is set, polled only every [`POLL_STEPS`]
     /// steps (`step` counts the loop's iterations).
     #[inline(always)]
-    pub(crate) fn poll(&self, step: u64) -> crate::Result<()> {
+    pub(crate) fn poll(&self, step: u64) -> crate::error::Result<()> {
         if step & (POLL_STEPS - 1) == 0 && self.is_cancelled() {
-            return Err(crate::Error::Interrupted);
+            return Err(crate::error::Error::Interrupted);
         }
         Ok(())
     }

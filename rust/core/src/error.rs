@@ -15,7 +15,7 @@ pub enum Error {
         /// The allowed range, in words ("> 0", "in (0, 90]").
         expected: String,
     },
-    /// The run was interrupted through its [`Cancel`](crate::Cancel) token (Ctrl-C): no
+    /// The run was interrupted through its [`Cancel`](crate::cancel::Cancel) token (Ctrl-C): no
     /// record, the impact was abandoned part-way.
     #[error("interrupted")]
     Interrupted,

@@ -19,9 +19,10 @@
 //! from the plate; spin is counter-clockwise positive; units are per unit depth.
 #![warn(missing_docs)]
 
-// Layers, each using only those below it: `error` and `cancel`, `geometry` (shapes and their overlap with
-// the plate), `model` (scene and derived model), `law` (the contact forces), `integrate` (how
-// time advances), `impact` (one impact to a record), `sweep` (many impacts).
+// Layers, each using only those below it: `error`, `cancel` and `numerics` (the root finder),
+// `geometry` (shapes and their overlap with the plate), `model` (scene and derived model), `law`
+// (the contact forces), `integrate` (the steppers: how time advances), `impact` (the loops of
+// one impact to a record), `sweep` (many impacts).
 pub mod cancel;
 pub mod error;
 pub mod geometry;
@@ -29,18 +30,17 @@ pub mod impact;
 pub mod integrate;
 pub mod law;
 pub mod model;
+pub(crate) mod numerics;
 pub mod sweep;
 
 pub use cancel::{Cancel, POLL_STEPS};
 pub use error::{Error, Result};
 pub use geometry::{ConvexObstacle, Corners, Overlap, OverlapMethod, Patch, Polygon, Shape};
+pub use impact::adaptive::{simulate_reference, simulate_reference_with_trace, ReferenceOptions};
 pub use impact::{
     contact_steps, default_step_budget, estimate_max_depth, simulate, simulate_cancellable,
     simulate_model, simulate_with_trace, simulate_with_trace_cancellable, Cell, Record, StopReason,
     Trace, BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_STEPS_PER_CONTACT, RECORD_COLUMNS,
-};
-pub use integrate::adaptive::{
-    simulate_reference, simulate_reference_with_trace, ReferenceOptions,
 };
 pub use law::{plate_overlap, StickState};
 pub use model::{

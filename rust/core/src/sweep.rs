@@ -4,7 +4,7 @@
 use crate::cancel::Cancel;
 use crate::error::Error;
 use crate::impact::{simulate_cancellable, Record};
-use crate::model::scene::{scene_from_columns_with, shape_columns};
+use crate::model::columns::{scene_from_columns_with, shape_columns};
 use crate::model::{check_case, Initial, Scene, CASE_COLUMNS};
 use rayon::prelude::*;
 
@@ -83,7 +83,7 @@ pub fn run_cases(
 }
 
 /// As [`run_cases`], interruptible: once `cancel` is set every worker abandons its impact
-/// within [`crate::POLL_STEPS`] steps and starts no new case, and the result is
+/// within [`crate::cancel::POLL_STEPS`] steps and starts no new case, and the result is
 /// `Err((i, Error::Interrupted))`, `i` the first case that did not finish.
 pub fn run_cases_cancellable(
     cases: &[Case],

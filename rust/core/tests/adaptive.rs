@@ -7,7 +7,7 @@
 //! three spins, two tangential dampings, four tolerances) runs behind `--ignored`:
 //! `cargo test --release --test adaptive -- --ignored --nocapture`.
 
-use restitution_core::integrate::adaptive::LOCAL_TOL_PER_TARGET;
+use restitution_core::impact::adaptive::LOCAL_TOL_PER_TARGET;
 use restitution_core::{
     simulate, simulate_reference, Initial, Integrator, Record, ReferenceOptions, Scene, Shape,
 };

@@ -8,6 +8,7 @@ use restitution_core::{
 };
 
 const V: f64 = 0.0357;
+const R: f64 = 0.01;
 
 fn opts(tol: f64) -> ReferenceOptions {
     ReferenceOptions {
@@ -321,3 +322,83 @@ fn record_and_trace_agree_with_the_fixed_step_integrators() {
         assert!(f_t.abs() <= scene.mu * f_n.abs() * (1.0 + 1e-12) + 1e-15 * f_max);
     }
 }
+
+fn reference_scene(gamma: f64, mu: f64, gamma_t: f64, dtf: f64) -> Scene {
+    Scene {
+        shape: Shape::regular_polygon(R, 120).unwrap(),
+        gamma,
+        mu,
+        gamma_t,
+        dt_factor: dtf,
+        integrator: Integrator::Reference,
+        ..Scene::default()
+    }
+}
+
+/// Without friction the only force is F_n >= 0 along +y: v_y can never decrease, at any
+/// step, in the clipped tail included (the case: 120-gon, theta 10, gamma 0.1,
+/// omega_in -50 deg/s, largest step 0.2 t_ref, where v_y fell by 1.4e-8 m/s after the clip).
+#[test]
+fn reference_plate_never_pulls_in_the_clipped_tail() {
+    use restitution_core::{simulate_reference_with_trace, ReferenceOptions};
+    let mut worst: f64 = 0.0;
+    for dtf in [0.2, 1.0] {
+        for k in 0..40 {
+            let phi0 = 0.075 * k as f64;
+            for (theta, om_deg) in [(10.0, -50.0f64), (30.0, 50.0), (70.0, -20.0)] {
+                let scene = reference_scene(0.10, 0.0, 0.0, dtf);
+                let init = Initial::from_angle(V, theta, om_deg.to_radians(), phi0);
+                let opts = ReferenceOptions::default();
+                let (_, tr) = simulate_reference_with_trace(&scene, &init, &opts).unwrap();
+                for w in tr.vy.windows(2) {
+                    worst = worst.max(w[0] - w[1]);
+                }
+            }
+        }
+    }
+    // Round-off of v_y (~0.03 m/s) only.
+    assert!(
+        worst <= 1e-15,
+        "v_y fell by {worst:e} m/s: the plate pulled"
+    );
+}
+
+/// Once no corner is below the plate and every point of the body moves away (v_y > r |omega|)
+/// nothing can touch it again: the velocities stay as they are (the case: 120-gon,
+/// gamma 0.33, mu 0.1, gamma_t 0.5, omega_in +50 deg/s, where one more step found a sliver
+/// and applied f_n = mu^-1 f_t ~ 1e-2 N/m).
+#[test]
+fn reference_applies_no_force_after_separation() {
+    use restitution_core::{simulate_reference_with_trace, ReferenceOptions};
+    let mut bad = Vec::new();
+    for dtf in [0.2, 1.0] {
+        for k in 0..100 {
+            let phi0 = 0.03 * k as f64;
+            for theta in [50.0, 70.0] {
+                let scene = reference_scene(0.33, 0.1, 0.5, dtf);
+                let init = Initial::from_angle(V, theta, 50f64.to_radians(), phi0);
+                let opts = ReferenceOptions::default();
+                let (_, tr) = simulate_reference_with_trace(&scene, &init, &opts).unwrap();
+                let n = tr.t.len();
+                let gone = (1..n).find(|&i| tr.depth[i] <= 0.0 && tr.vy[i] > R * tr.omega[i].abs());
+                if let Some(g) = gone {
+                    let moved = (g + 1..n).any(|j| {
+                        tr.vx[j] != tr.vx[g] || tr.vy[j] != tr.vy[g] || tr.omega[j] != tr.omega[g]
+                    });
+                    if moved {
+                        bad.push((dtf, phi0, theta));
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "a force after separation in {} cases, e.g. {:?}",
+        bad.len(),
+        bad.first()
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The matrix

@@ -21,7 +21,7 @@
 //! normal is perpendicular to it (docs/model.md, section 3).
 
 use crate::error::Result;
-use crate::geometry::shape::{validate_convex, Overlap, Polygon};
+use crate::geometry::{validate_convex, Overlap, Polygon};
 use parry2d_f64::math::Vector2 as V;
 use parry2d_f64::transformation::{
     convex_polygons_intersection_with_tolerances, PolygonIntersectionTolerances,

@@ -18,8 +18,9 @@
 //! without any of this.
 
 use crate::geometry::{Corners, Overlap};
-use crate::integrate::{roots, Stepper};
+use crate::integrate::Stepper;
 use crate::law::{Contact, Dof, Forces, PlateGeometry};
+use crate::numerics::roots;
 
 /// Length of the one-sided peeks, as a fraction of the step: short enough that the peeks stay
 /// on the new branch, long enough that their differences keep ~1e-13 relative precision.
@@ -44,7 +45,7 @@ pub fn corners(overlap: &Option<Overlap>) -> Option<Corners> {
 /// before it). `None` if no corner's height changes side along the path (a change seen only
 /// through round-off at the step's end).
 ///
-/// At a touch, crossings within [`SIMULTANEOUS`] of the first are one event (an edge parallel
+/// At a touch, crossings within `SIMULTANEOUS` of the first are one event (an edge parallel
 /// to the plate); the fraction returned is the last of them, just past it on the new side.
 pub fn locate<G: PlateGeometry, S: Stepper>(
     geometry: &G,

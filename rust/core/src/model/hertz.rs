@@ -19,7 +19,7 @@
 //! steps moves it by < 3e-12); beta is found to 1e-13 of itself (|e(beta) - cor| <= 1e-15 over
 //! cor 0.01 ... 0.999). A sweep varies cor rarely, so the last value is cached per thread.
 
-use crate::integrate::roots;
+use crate::numerics::roots;
 use std::cell::Cell;
 
 /// Smallest `cor` the calibration accepts: below it the contact is so overdamped that e(beta)

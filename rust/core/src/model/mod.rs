@@ -1,13 +1,17 @@
 //! What an impact is made of: the scene (particle, material, contact law, numerics), the
 //! initial state, the derived model, and the time-step bound each integrator needs.
 
+pub mod columns;
+pub mod derived;
 pub mod hertz;
 pub mod scene;
 pub mod stability;
 
+pub use columns::{
+    check_orientation, check_theta, scene_from_columns, shape_from_columns, CASE_COLUMNS, CHOICES,
+};
+pub use derived::{check_case, Hertz, Model};
 pub use scene::{
-    check_case, check_orientation, check_theta, scene_from_columns, shape_from_columns,
-    sin_cos_deg, Hertz, InertiaModel, Initial, Integrator, Model, NormalLaw, Scene,
-    TangentialModel, CASE_COLUMNS, CHOICES,
+    sin_cos_deg, InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialModel,
 };
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

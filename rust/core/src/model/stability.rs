@@ -39,7 +39,8 @@
 //!   omega_t = sqrt(k_t / m_t) and lambda_t = c_t / m_t = gamma_t omega_t, with
 //!   m_t = 1 / (1 / m + r^2 / I).
 
-use super::scene::{Integrator, Model, NormalLaw, Scene};
+use super::derived::Model;
+use super::scene::{Integrator, NormalLaw, Scene};
 use crate::error::{ensure_param, Error, Result};
 use crate::geometry::Shape;
 

@@ -3,8 +3,8 @@
 
 use super::piece::{Mode, Tan, Touch};
 use super::{State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
-use crate::geometry::shape::crossing_x;
-use crate::geometry::shape::disc_segment_at;
+use crate::geometry::crossing_x;
+use crate::geometry::disc_segment_at;
 use crate::geometry::{Overlap, Shape};
 use crate::law::{carrying, trial_force, vertex_springs, Forces, NormalForce, StickState};
 use crate::model::{Model, NormalLaw};

@@ -1,167 +1,19 @@
 //! The loop of one impact: step, reject or accept, end the piece at the first switch, handle
 //! chattering switches, and build the record.
 
-use super::dopri::{root_error_ratio, Step};
+use super::control::{error_estimate, step_factor, Limits};
+use super::extremes::track_extremes;
 use super::law::{Eval, Reference};
 use super::mode::{apply, start_slip};
 use super::piece::{Event, Mode, Tally, Tan, Touch};
-use super::{
-    ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
-};
+use super::step::Step;
+use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, Y};
 use crate::cancel::Cancel;
 use crate::error::Result;
-use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::flight;
-use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
-use crate::integrate::roots;
-use crate::law::NormalForce;
-use crate::model::{Initial, Model, NormalLaw};
+use crate::impact::record::{Record, StopReason, Trace};
+use crate::model::{Initial, Model};
 use std::f64::consts::PI;
-
-/// Smallest error scale of a velocity component, relative to the impact's speed.
-const SCALE_FLOOR: f64 = 1e-3;
-
-/// The error scale of each state component, from the impact's own scales (so that a scene
-/// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
-/// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
-/// spin; the speed where a component is zero), the positions' what those velocities cover
-/// in t_c / pi, the spring's the elongation that holds as much energy as the contact point's
-/// velocity scale (see below), the works' the energy.
-fn error_scales(
-    model: &Model,
-    init: &Initial,
-    (speed, energy): (f64, f64),
-    t_est: f64,
-    depth_est: f64,
-) -> State {
-    let r = model.r;
-    let v_in = init.vx.hypot(init.vy);
-    // Floored at 1e-3 of the speed (spin included): a component far below the others (a
-    // grazing impact's v_y, a spinning body's v_x) cannot be followed to `tol` of itself in
-    // double precision, and asking for it costs millions of steps (a triangle at 0.01 deg and
-    // 1e4 deg/s took 3e7). Over the study's grid (theta >= 4 deg) no floor is reached.
-    let or_speed = |x: f64| x.clamp(SCALE_FLOOR * speed, speed);
-    let mut scale = [0.0; NS];
-    scale[VX] = or_speed(init.vx.abs());
-    scale[VY] = or_speed(init.vy.abs());
-    scale[OM] = or_speed(v_in) / r;
-    let t_c = t_est / PI;
-    scale[X] = scale[VX] * t_c;
-    scale[Y] = scale[VY] * t_c;
-    scale[PHI] = scale[OM] * t_c;
-    // In stick the spring and the contact point's motion are one oscillator: an error of xi
-    // is worth one of the tangential velocity when their energies match, (1/2) k_t xi^2 =
-    // (1/2) m_t v^2, with m_t = 1 / (1/m + r^2/I) the mass the spring moves at the contact
-    // point and k_t its stiffness at the estimated largest depth. (The force that moves v_x in
-    // t_c, the scale before, is 3 / (omega_t t_c) ~ 1/6 of that on the paper's disc: it set 90
-    // % of the steps in stick, finer than any output needed.) Mindlin's xi is a force (section
-    // 14.4), the elongation times k_t.
-    let m_t = 1.0 / (1.0 / model.mass + r * r / model.inertia);
-    let (k_xi, rate, _) = model.spring(depth_est);
-    let k_t = k_xi * rate;
-    // Without a spring (k_t = 0) its elongation does not act: no error of it counts.
-    scale[XI] = if k_t > 0.0 {
-        scale[VX] * (m_t / k_t).sqrt() * if model.mindlin { k_t } else { 1.0 }
-    } else {
-        f64::INFINITY
-    };
-    scale[W_EL] = energy;
-    scale[W_D] = energy;
-    scale[W_T] = energy;
-    scale
-}
-
-/// `err_est` from the local error estimates accumulated over the accepted steps (root sum of
-/// squares, components VX, VY, OM): the largest over e_N, e_T, e_kin and omega_out r / v.
-fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
-    let v_in = init.vx.hypot(init.vy);
-    let e_t = if init.vx != 0.0 {
-        acc[VX] / init.vx.abs()
-    } else {
-        0.0
-    };
-    let e_n = acc[VY] / init.vy.abs();
-    let e_kin = acc[VX].hypot(acc[VY]) / v_in;
-    let spin = acc[OM] * r / v_in;
-    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin)
-}
-
-impl Reference<'_> {
-    /// Whether the force in mode `m` has the disc's root singularities at touch and
-    /// separation: a disc or sphere in contact under the area or Hertz law (the linear law
-    /// is smooth there), with the clip on (in the clipped tail no force acts, so nothing is
-    /// singular at its end: halving towards separation there took 12 of a frictionless disc's
-    /// 47 steps).
-    fn singular_force(&self, m: &Mode) -> bool {
-        self.linear().is_none() && m.touch == Touch::Disc && m.clip_on
-    }
-
-    /// The largest step near a point where a disc's force is not smooth (touch and
-    /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
-    /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
-    /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
-    /// first after touch, and towards separation the steps halve the time left until then.
-    /// `h_sing` is that step (`Limits::h_singular`).
-    fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, h_sing: f64) -> f64 {
-        if !self.singular_force(m) {
-            return f64::INFINITY;
-        }
-        if fresh_touch {
-            return h_sing;
-        }
-        let depth = self.model.r - s[Y];
-        if s[VY] > 0.0 && depth > 0.0 {
-            (0.5 * depth / s[VY]).max(h_sing)
-        } else {
-            f64::INFINITY
-        }
-    }
-
-    /// The factor on the embedded error estimate of a step across or near a point where the
-    /// disc's force is not smooth (a step that starts within [`ROOT_REACH`] of its lengths
-    /// after touch, where the damping still grows like a root of the time; a step ending on
-    /// separation), which the embedded estimate understates: [`root_error_ratio`] for the
-    /// law's root (the area law's damping grows like t^(1/2), the Tsuji dashpot like
-    /// t^(1/4)), `rho` the time since touch in units of the step. 1 for every other step.
-    /// (Redoing the first four steps after touch as two halves and extrapolating their
-    /// difference, as before, cost 12 evaluations of the law per step, ~6 % of the disc's time
-    /// at tol 1e-6, and covered fewer of the grid's errors: >= 98.4 % against >= 99.9 %.)
-    fn singular_factor(&self, m: &Mode, rho: Option<f64>, event: Option<Event>) -> f64 {
-        if !self.singular_force(m) {
-            return 1.0;
-        }
-        let p = match self.model.scene.normal_law {
-            NormalLaw::Hertz { .. } => 0.25,
-            _ => 0.5,
-        };
-        // Beyond a step's length from touch the embedded estimate no longer understates.
-        let at_touch = rho
-            .filter(|&rho| rho < ROOT_REACH)
-            .map_or(1.0, |rho| root_error_ratio(p, rho, false));
-        let at_separation = if event == Some(Event::Separate) {
-            root_error_ratio(p, 0.0, true)
-        } else {
-            1.0
-        };
-        at_touch.max(at_separation)
-    }
-}
-
-/// Steps from touch, in units of the step, beyond which [`root_error_ratio`] is 1 (1.1 at
-/// one step, 0.5 at two).
-const ROOT_REACH: f64 = 2.0;
-
-/// The step size controller's factor for a step with scaled error `err` (> 0; rejected above
-/// 1): 0.9 err^(-1/5) within [0.2, 5]. Below 1.8e-4 that is 5 without the power (0.9
-/// (1.8e-4)^(-1/5) = 5.04), which libm's pow, called at every step, made 4 % of a profile of
-/// the adaptive path.
-fn step_factor(err: f64) -> f64 {
-    if err < 1.8e-4 {
-        5.0
-    } else {
-        (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
-    }
-}
 
 /// Shortest stick phase, in units of the estimated contact time, that counts for
 /// `slip_events` (see `Run::take`).
@@ -173,93 +25,6 @@ const CHATTER_RESOLUTIONS: f64 = 100.0;
 
 /// Consecutive zero-length pieces after which a step ignores its events (see `first_switch`).
 const MAX_ZERO_PIECES: u32 = 64;
-
-/// Updates the largest depth and area with their maxima inside the taken part of a step. A
-/// polygon's: where a parabola through three samples peaks inside the step, Brent's search on
-/// the dense output finds the peak; a disc's: see [`deepest_disc`].
-///
-/// `start` is the evaluation at the step's start; at its end, a whole step reuses the last
-/// stage's.
-fn track_extremes(
-    ode: &Reference,
-    m: &Mode,
-    step: &Step,
-    frac: f64,
-    tally: &mut Tally,
-    start: &Eval,
-) {
-    match m.touch {
-        Touch::Off => return,
-        Touch::Disc => return deepest_disc(ode, step, frac, tally),
-        Touch::Poly { .. } => {}
-    }
-    let of = |e: &Eval| [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)];
-    let sample = |th: f64| of(&ode.eval(m, &step.at(th)).1);
-    let end = if frac == 1.0 {
-        of(&step.end)
-    } else {
-        sample(frac)
-    };
-    let ends = [of(start), sample(0.5 * frac), end];
-    for (k, best) in [&mut tally.max_depth, &mut tally.max_area]
-        .into_iter()
-        .enumerate()
-    {
-        let f3 = [ends[0][k], ends[1][k], ends[2][k]];
-        *best = best.max(peak(|th| sample(th)[k], f3, frac));
-    }
-}
-
-/// [`track_extremes`] for a disc or sphere, whose depth is r - y and whose overlap grows with
-/// it: both peak where v_y turns from falling to rising, located on the dense output without
-/// evaluating the law (sampling the law at mid-step for a peak cost an evaluation per step).
-fn deepest_disc(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
-    if step.y0[VY] > 0.0 || (frac == 1.0 && step.y1[VY] <= 0.0) {
-        return;
-    }
-    deepest_disc_inside(ode, step, frac, tally);
-}
-
-/// The part of [`deepest_disc`] for a step where v_y may turn (once per impact): kept out of
-/// line, it costs the other steps nothing.
-#[inline(never)]
-fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
-    let v_y = |th: f64| step.component_at(th, VY);
-    let v_end = if frac == 1.0 { step.y1[VY] } else { v_y(frac) };
-    if v_end <= 0.0 {
-        return;
-    }
-    // Near its peak the depth moves like the square of the distance to it: a position to
-    // 1e-10 of the step leaves nothing of the depth.
-    let (_, th) = roots::bracket(v_y, (0.0, step.y0[VY]), (frac, v_end), 1e-10 * frac);
-    let s = step.at(th);
-    // The shape's own overlap (the same as the held mode's while in contact): calling the
-    // mode's here, out of line, cost the law's evaluation its inlining of it (10 % per step).
-    if let Some(o) = ode.model.scene.shape.overlap(s[Y], s[PHI]) {
-        tally.max_depth = tally.max_depth.max(o.depth);
-        tally.max_area = tally.max_area.max(o.area);
-    }
-}
-
-/// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
-/// frac; -inf otherwise (the ends are recorded as step ends).
-fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
-    // Parabola through the three samples: concave with its vertex within the step (a little
-    // margin, so that a peak just past a sample is not missed).
-    let curv = f0 - 2.0 * fm + f1;
-    if curv >= 0.0 {
-        return f64::NEG_INFINITY;
-    }
-    let vertex = 0.5 + 0.25 * (f0 - f1) / curv;
-    if !(-0.1..=1.1).contains(&vertex) {
-        return f64::NEG_INFINITY;
-    }
-    // Near its peak the value moves like the square of the distance to it: a position to
-    // 1e-8 of the step leaves ~1e-16 of the value's change over the step, at round-off.
-    roots::peak(f, (0.0, frac), fm, 1e-8 * frac.max(1e-300))
-        .max(f0)
-        .max(f1)
-}
 
 /// Integrates one impact from first touch (validated scene and initial state).
 pub(crate) fn integrate(
@@ -290,32 +55,6 @@ pub(crate) fn integrate(
         }
     };
     Ok(run.finish(stop))
-}
-
-/// What bounds one impact's integration, fixed at its start.
-pub(super) struct Limits {
-    /// The largest step.
-    h_max: f64,
-    /// The estimated contact time.
-    t_est: f64,
-    /// The largest step across a point where the disc's force is not smooth, t_est tol^(2/3)
-    /// (see `Reference::singular_cap`), fixed per impact.
-    h_singular: f64,
-    /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
-    /// free flight is jumped over and does not count, as for the fixed steps).
-    t_end: f64,
-    /// The step budget (attempts, rejected steps included): steps may be much shorter than
-    /// h_max while a turning polygon brings corner after corner to the plate (counted in
-    /// N_c), but an explicit method crawls through a damper much stiffer than the contact (a
-    /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
-    /// out.
-    max_steps: u64,
-    /// Pieces shorter than this are negligible (for chattering).
-    tiny: f64,
-    /// The polygon's corners (0 for a disc or sphere).
-    n_corners: usize,
-    /// Kinetic energy before the impact.
-    energy_in: f64,
 }
 
 /// The state of one impact between steps.
@@ -770,48 +509,4 @@ impl<'a, 't> Run<'a, 't> {
 fn push(tr: &mut Trace, t: f64, s: &State, e: &Eval, xi: f64) {
     let (q, v) = ([s[X], s[Y], s[PHI]], [s[VX], s[VY], s[OM]]);
     tr.push(t, &q, &v, &e.forces, e.depth, xi);
-}
-
-impl<'a> Reference<'a> {
-    /// The ODE of one impact and the limits of its integration.
-    pub(super) fn for_impact(
-        model: &'a Model,
-        init: &Initial,
-        depth_est: f64,
-        opts: &ReferenceOptions,
-    ) -> (Self, Limits) {
-        let r = model.r;
-        let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
-        let t_est = PI * depth_est / init.vy.abs();
-        let h_max = opts.max_step_factor.unwrap_or(model.scene.dt_factor) * model.t_ref;
-        let energy_in = model.kinetic_energy(&[init.vx, init.vy, init.omega]);
-        let scale = error_scales(model, init, (speed, energy_in), t_est, depth_est);
-        let verts = model.scene.shape.vertices();
-        let ode = Reference {
-            model,
-            verts,
-            mu: model.scene.mu,
-            error_weight: scale.map(|sc| 1.0 / (opts.tol * sc)),
-            tol: opts.tol,
-            fd_step: 1e-5 * t_est,
-            force_tol: opts.tol * model.mass * speed / t_est,
-            normal: NormalForce::new(model),
-            inv_mass: 1.0 / model.mass,
-            inv_inertia: 1.0 / model.inertia,
-        };
-        let lim = Limits {
-            h_max,
-            t_est,
-            h_singular: t_est * opts.tol.powf(2.0 / 3.0),
-            t_end: TIMEOUT_CONTACT_TIMES * t_est,
-            max_steps: budget_for(
-                model,
-                reference_contact_steps(model, init, depth_est, h_max, opts.tol),
-            ),
-            tiny: 1e-9 * t_est,
-            n_corners: verts.len(),
-            energy_in,
-        };
-        (ode, lim)
-    }
 }

@@ -27,16 +27,20 @@
 //! `dt_factor` means the largest (and the first) step, in units of t_ref; the accuracy is set
 //! by [`ReferenceOptions::tol`].
 //!
-//! The parts: `dopri` the Runge-Kutta step and its dense output, `law` the forces of a
+//! The parts: `step` one Runge-Kutta step ([`crate::integrate::dopri`]) with what the switches
+//! read from its stages, `law` the forces of a
 //! held mode, `mode` the modes and the switch at an event, `events` the event functions
 //! and their location, `run` the loop of one impact.
 
-mod dopri;
+mod control;
 mod events;
+mod extremes;
 mod law;
 mod mode;
 mod piece;
 mod run;
+mod step;
+mod switches;
 
 use crate::cancel::Cancel;
 use crate::error::Result;

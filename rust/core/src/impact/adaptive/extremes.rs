@@ -1,0 +1,95 @@
+//! The largest depth and overlap area of an impact, found inside the steps: on the dense output
+//! where they peak between a step's ends.
+
+use super::law::{Eval, Reference};
+use super::piece::{Mode, Tally, Touch};
+use super::step::Step;
+use super::{PHI, VY, Y};
+use crate::numerics::roots;
+
+/// Updates the largest depth and area with their maxima inside the taken part of a step. A
+/// polygon's: where a parabola through three samples peaks inside the step, Brent's search on
+/// the dense output finds the peak; a disc's: see [`deepest_disc`].
+///
+/// `start` is the evaluation at the step's start; at its end, a whole step reuses the last
+/// stage's.
+pub(super) fn track_extremes(
+    ode: &Reference,
+    m: &Mode,
+    step: &Step,
+    frac: f64,
+    tally: &mut Tally,
+    start: &Eval,
+) {
+    match m.touch {
+        Touch::Off => return,
+        Touch::Disc => return deepest_disc(ode, step, frac, tally),
+        Touch::Poly { .. } => {}
+    }
+    let of = |e: &Eval| [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)];
+    let sample = |th: f64| of(&ode.eval(m, &step.at(th)).1);
+    let end = if frac == 1.0 {
+        of(&step.end)
+    } else {
+        sample(frac)
+    };
+    let ends = [of(start), sample(0.5 * frac), end];
+    for (k, best) in [&mut tally.max_depth, &mut tally.max_area]
+        .into_iter()
+        .enumerate()
+    {
+        let f3 = [ends[0][k], ends[1][k], ends[2][k]];
+        *best = best.max(peak(|th| sample(th)[k], f3, frac));
+    }
+}
+
+/// [`track_extremes`] for a disc or sphere, whose depth is r - y and whose overlap grows with
+/// it: both peak where v_y turns from falling to rising, located on the dense output without
+/// evaluating the law (sampling the law at mid-step for a peak cost an evaluation per step).
+fn deepest_disc(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
+    if step.y0[VY] > 0.0 || (frac == 1.0 && step.y1[VY] <= 0.0) {
+        return;
+    }
+    deepest_disc_inside(ode, step, frac, tally);
+}
+
+/// The part of [`deepest_disc`] for a step where v_y may turn (once per impact): kept out of
+/// line, it costs the other steps nothing.
+#[inline(never)]
+fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
+    let v_y = |th: f64| step.component_at(th, VY);
+    let v_end = if frac == 1.0 { step.y1[VY] } else { v_y(frac) };
+    if v_end <= 0.0 {
+        return;
+    }
+    // Near its peak the depth moves like the square of the distance to it: a position to
+    // 1e-10 of the step leaves nothing of the depth.
+    let (_, th) = roots::bracket(v_y, (0.0, step.y0[VY]), (frac, v_end), 1e-10 * frac);
+    let s = step.at(th);
+    // The shape's own overlap (the same as the held mode's while in contact): calling the
+    // mode's here, out of line, cost the law's evaluation its inlining of it (10 % per step).
+    if let Some(o) = ode.model.scene.shape.overlap(s[Y], s[PHI]) {
+        tally.max_depth = tally.max_depth.max(o.depth);
+        tally.max_area = tally.max_area.max(o.area);
+    }
+}
+
+/// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
+/// frac; -inf otherwise (the ends are recorded as step ends).
+fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
+    // Parabola through the three samples: concave with its vertex within the step (a little
+    // margin, so that a peak just past a sample is not missed).
+    let curv = f0 - 2.0 * fm + f1;
+    if curv >= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let vertex = 0.5 + 0.25 * (f0 - f1) / curv;
+    if !(-0.1..=1.1).contains(&vertex) {
+        return f64::NEG_INFINITY;
+    }
+    // Near its peak the value moves like the square of the distance to it: a position to
+    // 1e-8 of the step leaves ~1e-16 of the value's change over the step, at round-off.
+    roots::peak(f, (0.0, frac), fm, 1e-8 * frac.max(1e-300))
+        .max(f0)
+        .max(f1)
+}

@@ -1,0 +1,72 @@
+//! One Dormand-Prince step of an impact's ODE ([`crate::integrate::dopri`]) with what the
+//! switches need from its stages: a pull of the clipped normal force, the span of the
+//! stick -> slip event function, the slip stages, and the evaluation at its end.
+
+use super::law::{Eval, Reference};
+use super::piece::{Mode, Tan};
+use super::{State, NS, XI};
+use crate::integrate::dopri::{DenseStep, C};
+
+/// The components the forces depend on: x, y, phi, the velocities and the spring (the works
+/// follow them, and are not interpolated inside a step).
+const MECHANICAL: usize = XI + 1;
+
+/// One accepted Runge-Kutta step with what its dense output and the switches need
+/// (`Default`: a blank one for [`Reference::dp_step`] to write into).
+#[derive(Default)]
+pub(super) struct Step {
+    /// The step itself: its ends, stages, error estimate and dense output.
+    dp: DenseStep<NS, MECHANICAL>,
+    /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
+    /// tolerance) while the clip was on: the step integrated across a clip switch.
+    pub(super) pull: Option<f64>,
+    /// In stick: the least and the largest value of the stick -> slip event function over
+    /// the stages' states, the end's included (see `Reference::stays_stuck`).
+    pub(super) stick_span: (f64, f64),
+    /// In slip: the normal force and the contact point's tangential velocity at the stages'
+    /// states (the end's last), see `Reference::stays_slipping`.
+    pub(super) slip_stages: [(f64, f64); 6],
+    /// The evaluation at `y1` (the last stage, first-same-as-last): its derivative is
+    /// `k_end()`; reused for the event functions at the step's end and for the next step.
+    pub(super) end: Eval,
+}
+
+impl std::ops::Deref for Step {
+    type Target = DenseStep<NS, MECHANICAL>;
+
+    fn deref(&self) -> &Self::Target {
+        &self.dp
+    }
+}
+
+impl Reference<'_> {
+    /// One Dormand-Prince step from `y0` with first stage `k1`, written into `out`; returns the
+    /// scaled error norm (<= 1: accepted).
+    pub(super) fn dp_step(&self, m: &Mode, y0: &State, k1: &State, h: f64, out: &mut Step) -> f64 {
+        let mut pull = None;
+        let mut stick_span = (f64::INFINITY, f64::NEG_INFINITY);
+        let (end, slip_stages) = (&mut out.end, &mut out.slip_stages);
+        out.dp.take(y0, k1, h, |st, yi, k_out| {
+            // Each stage's evaluation goes where the step keeps its end's: the last stays.
+            self.eval_to(m, yi, k_out, end);
+            if pull.is_none() && m.clipped() && end.fn_raw < -self.force_tol {
+                pull = Some(C[st]);
+            }
+            match m.tan {
+                Tan::Stick => {
+                    let g = self.to_slip_value(end);
+                    stick_span = (stick_span.0.min(g), stick_span.1.max(g));
+                }
+                Tan::Slip(_) => slip_stages[st - 1] = (end.forces.fy, end.v_t),
+                Tan::None | Tan::Free => {}
+            }
+        });
+        out.pull = pull;
+        out.stick_span = stick_span;
+        // The spring elongation is not integrated outside stick (there it is algebraic).
+        (0..NS)
+            .filter(|&i| i != XI || m.tan == Tan::Stick)
+            .map(|i| out.dp.err[i].abs() * self.error_weight[i])
+            .fold(0.0, f64::max)
+    }
+}
