@@ -48,3 +48,19 @@ def test_reproduce_numbers(quick_run):
 
 def test_bad_threads():
     assert cli.main(["reproduce", "--quick", "--threads", "0"]) == 2
+
+
+def test_report_timings_add_up_and_ranges_say_something(quick_run):
+    """The stages' seconds add up to the total the report states (each stage timed whole, not
+    only its sweeps), and no range reads "x to x" at the precision it is printed."""
+    import re
+
+    report = (quick_run / "report.md").read_text()
+    line = next(ln for ln in report.splitlines() if " s in all: " in ln)
+    total = float(line.split(" s in all: ")[0])
+    parts = [float(x) for x in re.findall(r" (\d+\.\d) s(?=[,.])", line.split(" s in all: ")[1])]
+    assert len(parts) >= 5, line
+    # Each part is rounded to 0.1 s.
+    assert abs(sum(parts) - total) <= 0.05 * len(parts) + 0.05, line
+    for lo, hi in re.findall(r"(-?\d+\.\d+) to (-?\d+\.\d+)", report):
+        assert lo != hi, f"empty range {lo} to {hi} in the report"
