@@ -19,6 +19,7 @@ __all__ = [
     "check_shape",
     "check_theta",
     "convex_template",
+    "last_call_diagnostics",
     "max_dt_factor_for",
     "run_cases",
     "trace_case",
@@ -62,3 +63,8 @@ def check_theta(theta_deg: float) -> None:
 
 def convex_template(vertices: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], float]:
     """A convex polygon checked by the engine: (vertices about the centroid over the circumradius, circumradius)."""
+
+def last_call_diagnostics() -> dict[str, float | int]:
+    """Diagnostics of the last engine call on this thread (``run_cases``, ``trace_case``):
+    ``engine_s``, the engine's own seconds (measured in Rust), and ``waits_after_engine``, the
+    waits for a poll the call made after the engine had returned. For benchmarks and tests."""

@@ -9,6 +9,8 @@ use pyo3::exceptions::{PyKeyError, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 use restitution_core as core;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
 
 /// A core error and the case it belongs to, as a Python exception (a foreign error type needs
 /// a local newtype).
@@ -172,6 +174,22 @@ fn floats<'py>(
     )
 }
 
+/// What the last engine call made on this thread measured, for diagnostics
+/// ([`last_call_diagnostics`]): the engine's own time and the waits after it returned.
+#[derive(Clone, Copy, Default)]
+struct CallDiagnostics {
+    /// Seconds from the engine's entry to its return (the work alone, without the binding).
+    engine_s: f64,
+    /// Times the calling thread went back to wait for the watcher's next poll after the
+    /// engine had already returned (each such wait can last a whole poll period).
+    waits_after_engine: u64,
+}
+
+thread_local! {
+    static LAST_CALL: std::cell::Cell<CallDiagnostics> =
+        const { std::cell::Cell::new(CallDiagnostics { engine_s: 0.0, waits_after_engine: 0 }) };
+}
+
 /// Runs `work` with the GIL released on a worker thread while this thread watches for Ctrl-C:
 /// every 20 ms it takes the GIL and lets Python run its signal handlers (they only run on the
 /// main thread, and not while the engine holds it). On KeyboardInterrupt (or any error a
@@ -183,11 +201,16 @@ fn interruptible<T: Send>(
 ) -> PyResult<T> {
     let cancel = core::Cancel::new();
     let watcher = std::thread::current();
-    std::thread::scope(|scope| {
+    let returned = AtomicBool::new(false);
+    let mut diagnostics = CallDiagnostics::default();
+    let result = std::thread::scope(|scope| {
         let worker = scope.spawn(|| {
+            let start = Instant::now();
             let out = work(&cancel);
+            let engine_s = start.elapsed().as_secs_f64();
+            returned.store(true, Ordering::Release);
             watcher.unpark();
-            out
+            (out, engine_s)
         });
         loop {
             py.detach(|| {
@@ -196,9 +219,14 @@ fn interruptible<T: Send>(
                 }
             });
             if worker.is_finished() {
-                return Ok(worker
+                let (out, engine_s) = worker
                     .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                diagnostics.engine_s = engine_s;
+                return Ok(out);
+            }
+            if returned.load(Ordering::Acquire) {
+                diagnostics.waits_after_engine += 1;
             }
             if let Err(err) = py.check_signals() {
                 cancel.cancel();
@@ -206,7 +234,23 @@ fn interruptible<T: Send>(
                 return Err(err);
             }
         }
-    })
+    });
+    LAST_CALL.with(|last| last.set(diagnostics));
+    result
+}
+
+/// Diagnostics of the last call on this thread that ran the engine (`run_cases`, `trace_case`):
+/// `engine_s`, the seconds the engine itself took (from its entry to its return, measured in
+/// Rust), and `waits_after_engine`, how many times the call went back to wait for a poll after
+/// the engine had returned (0 when the call ended as soon as its work did). For benchmarks and
+/// tests of the binding's own cost; not part of the package's API.
+#[pyfunction]
+fn last_call_diagnostics(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let last = LAST_CALL.with(std::cell::Cell::get);
+    let out = PyDict::new(py);
+    out.set_item("engine_s", last.engine_s)?;
+    out.set_item("waits_after_engine", last.waits_after_engine)?;
+    Ok(out)
 }
 
 /// Runs one impact per row of `columns` in parallel on `threads` threads (0: all cores) with
@@ -350,8 +394,8 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 mod _core {
     #[pymodule_export]
     use super::{
-        check_cases, check_shape, check_theta, convex_template, max_dt_factor_for, run_cases,
-        trace_case,
+        check_cases, check_shape, check_theta, convex_template, last_call_diagnostics,
+        max_dt_factor_for, run_cases, trace_case,
     };
 
     #[pymodule_init]
