@@ -14,8 +14,10 @@ back. The calls:
 - one-case ``rs.sweep`` calls over the same angles on the disc, on all threads and on one;
 - small sweeps: 11 mu (0 ... 1) at each angle on the disc, all threads.
 
-The configurations take turns within each round, so a burst of load on a shared machine
-lands on all of them alike. Prints per configuration the median engine time and the median,
+Each round runs each configuration's loop over the 86 angles in turn (a user's loop of
+calls, not calls of several kinds interleaved: a parallel sweep's idle workers and its frames
+would slow the next call of another kind), so a burst of load on a shared machine lands on all
+of them alike. Prints per configuration the median engine time and the median,
 99th percentile and largest edge, in microseconds. Targets (issue 27): a median edge of
 ``rs.simulate`` <= 30 us, of a sweep call <= 1 ms.
 """
@@ -71,8 +73,8 @@ def main() -> None:
     engine: dict[str, list[float]] = {name: [] for name in configs}
     edge: dict[str, list[float]] = {name: [] for name in configs}
     for _ in range(args.rounds):
-        for theta in THETA:
-            for name, call in configs.items():
+        for name, call in configs.items():
+            for theta in THETA:
                 e, x = edge_of(call, float(theta))
                 engine[name].append(e)
                 edge[name].append(x)
