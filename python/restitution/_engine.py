@@ -112,16 +112,16 @@ def run(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None, threads: in
     return dict(_core.run_cases(cols, vertices, threads))
 
 
-def run_one(row: Sequence[float], vertices: np.ndarray | None) -> dict[str, Any]:
-    """Runs the one case of ``row`` (GIL released, on this thread): its record's values by
-    ``RECORD_COLUMNS`` name, None where undefined."""
-    return dict(zip(RECORD_COLUMNS, _core.run_case(row, vertices)))
+def run_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[Any, ...]:
+    """Runs the one case of ``row`` (GIL released, on this thread): its record's values in
+    ``RECORD_COLUMNS`` order, None where undefined."""
+    return _core.run_case(row, vertices)
 
 
-def trace_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[dict[str, Any], pl.DataFrame]:
+def trace_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[tuple[Any, ...], pl.DataFrame]:
     """Runs the one case of ``row``: (its record's values as :func:`run_one`, per-step trace frame)."""
     values, tr = _core.trace_case(row, vertices)
-    return dict(zip(RECORD_COLUMNS, values)), pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
+    return values, pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
 
 
 def dt_bounds(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None,

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, fields
+from typing import Any
 
 import polars as pl
 
@@ -106,14 +107,15 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
             values, trace_frame = _engine.run_one(row, scene.template_vertices()), None
     except _engine.RestitutionError as err:
         raise err.at_case(None) from None  # one impact: no case to name
-    return _record(theta_deg=theta, omega_in=omega, trace=trace_frame, **values)
+    return _record(theta, omega, values, trace_frame)
 
 
-def _record(**values: object) -> Record:
-    """The Record of ``values``, one per field, built without the frozen dataclass's
-    ``__init__``: it sets each of the 27 fields through ``object.__setattr__``, 7.7 us, most of
-    the cost of a ``simulate`` call beyond its impact. The same object otherwise (frozen, equal,
-    hashable, printable); ``tests/test_simulate.py`` checks that the record columns are its fields."""
+def _record(theta_deg: float, omega_in: float, values: tuple[Any, ...], trace: pl.DataFrame | None) -> Record:
+    """The Record of an impact's inputs, its record's ``values`` (in ``RECORD_COLUMNS`` order) and
+    its trace, built without the frozen dataclass's ``__init__``: that sets each of the 27 fields
+    through ``object.__setattr__``, 7.7 us, most of the cost of a ``simulate`` call beyond its
+    impact. The same object otherwise (frozen, equal, hashable, printable);
+    ``tests/test_simulate.py`` checks that its fields are the inputs, the record columns and the trace."""
     rec = object.__new__(Record)
-    rec.__dict__.update(values)
+    rec.__dict__.update(zip(_engine.RECORD_COLUMNS, values), theta_deg=theta_deg, omega_in=omega_in, trace=trace)
     return rec
