@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import pickle
 from collections.abc import Iterator
 
 import numpy as np
@@ -128,6 +129,21 @@ def test_replace_validates_and_leaves_the_original() -> None:
     assert scene.replace(mu=1.0).mu == 1.0 and scene.mu == 0.2
     with raises_naming(ValueError, "mu", ">= 0"):
         scene.replace(mu=-0.1)
+
+
+def test_the_kept_engine_row_is_the_scenes_values() -> None:
+    # simulate() reads the row kept at construction: it must follow replace() and pickling.
+    def row_of(scene: rs.Scene) -> list[float]:
+        return [scene.engine_values()[name] for name in _core.CASE_COLUMNS]
+
+    base = rs.Scene(mu=0.2, kt=None)
+    verts = [(0.0, 0.0), (0.02, 0.0), (0.0, 0.01)]
+    for scene in (base, base.replace(mu=0.7, integrator="adaptive"), rs.Scene.paper(),
+                  rs.Scene(shape=rs.ConvexPolygon(verts), mu=0.3), pickle.loads(pickle.dumps(base))):
+        np.testing.assert_array_equal(scene._engine_row(), row_of(scene))
+    old = pickle.loads(pickle.dumps(base))
+    del old.__dict__["_row"]  # as unpickled from a version that did not keep the row
+    np.testing.assert_array_equal(old._engine_row(), row_of(base))
 
 
 def test_defaults_are_the_paper_preset_of_model_md() -> None:
@@ -341,6 +357,12 @@ ENGINE_BAD = [(name, value) for name in ("theta_deg", "omega_in", "v", "mu", "ga
               and not (name in ("kt", "dt_factor") and value != value)]  # NaN: the engine's default
 
 
+def _row(**override: float) -> list[float]:
+    """The one-case entries' row: ``_columns`` as a value per ``CASE_COLUMNS`` name, in order."""
+    cols = _columns(**{name: np.array([value]) for name, value in override.items()})
+    return [float(cols[name][0]) for name in _core.CASE_COLUMNS]
+
+
 @pytest.mark.parametrize(("name", "value"), ENGINE_BAD)
 def test_engine_refuses_what_python_would_have(name: str, value: float) -> None:
     with pytest.raises(rs.RestitutionError, match="require") as info:
@@ -348,6 +370,10 @@ def test_engine_refuses_what_python_would_have(name: str, value: float) -> None:
     assert info.value.parameter == name and info.value.case == 0
     with pytest.raises(rs.RestitutionError, match="require"):
         _core.check_cases(_columns(**{name: np.array([value])}), None)
+    for one_case in (_core.run_case, _core.trace_case):
+        with pytest.raises(rs.RestitutionError, match="require") as info:
+            one_case(_row(**{name: value}), None)
+        assert info.value.parameter == name
 
 
 @pytest.mark.parametrize(("name", "value"), [("kn", 0.0), ("kn", INF), ("cn", -1.0), ("cn", INF)])
@@ -389,12 +415,27 @@ def test_engine_reports_a_missing_column() -> None:
         _core.run_cases(cols, None, 1)
 
 
-def test_trace_takes_exactly_one_case() -> None:
-    two = {k: np.repeat(v, 2) for k, v in _columns().items()}
-    with pytest.raises(ValueError, match="exactly one"):
-        _core.trace_case(two, None)
+def test_one_case_entries_take_one_row_of_every_column() -> None:
+    row = _row()
+    for one_case in (_core.run_case, _core.trace_case):
+        for bad in (row[:-1], [*row, 0.0]):
+            with pytest.raises((ValueError, TypeError)):
+                one_case(bad, None)
+        with pytest.raises(TypeError):
+            one_case([*row[:-1], "x"], None)
     with pytest.raises(ValueError, match="require"):
-        _core.trace_case(_columns(theta_deg=np.array([NAN])), None)
+        _core.trace_case(_row(theta_deg=NAN), None)
+    # The row's values are the columns' row: the same record either way.
+    columns = _core.run_cases(_columns(), None, 1)
+
+    def first(name: str) -> object:
+        valid = columns.get(f"{name}_valid")
+        value = columns[name][0]
+        if valid is not None and not valid[0]:
+            return None
+        return value.item() if isinstance(value, np.generic) else value
+
+    assert _core.run_case(row, None) == tuple(first(name) for name in _core.RECORD_COLUMNS)
 
 
 def test_engine_max_dt_factor_matches_the_python_bounds() -> None:

@@ -10,6 +10,7 @@ v_T = v cos theta, v_N = v sin theta:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -107,6 +108,25 @@ def test_record_fields_follow_their_definitions(disc_scene: rs.Scene) -> None:
     assert 0.0 < rec.max_depth < s.r / 2 and rec.max_area > 0.0
     assert rec.contact_time > 0.0 and rec.steps > 10
     assert set(rec.as_dict()) == {f for f in rec.__dataclass_fields__ if f != "trace"}
+
+
+def test_record_is_the_dataclass_of_the_record_columns(disc_scene: rs.Scene) -> None:
+    # simulate() builds its Record without the dataclass's __init__: the fields must be the
+    # engine's record columns (plus the inputs and the trace), and the object what __init__ makes.
+    from restitution._engine import RECORD_COLUMNS
+
+    names = [f.name for f in dataclasses.fields(rs.Record)]
+    assert names == ["theta_deg", "omega_in", *RECORD_COLUMNS, "trace"]
+    for theta in (37.0, 90.0):
+        rec = rs.simulate(disc_scene, theta_deg=theta)
+        made = rs.Record(**{name: getattr(rec, name) for name in names})
+        assert rec == made and hash(rec) == hash(made) and repr(rec) == repr(made)
+        assert rec == dataclasses.replace(rec)
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            rec.e_n = 0.0  # type: ignore[misc]
+        assert type(rec.steps) is int and type(rec.separated) is bool and type(rec.stop) is str
+        assert type(rec.e_n) is float and rec.trace is None
+    assert rec.e_t is None and rec.theta_deg == 90.0  # undefined head-on: None, not NaN
 
 
 def test_sphere_inertia_changes_the_moment_only() -> None:

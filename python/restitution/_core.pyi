@@ -4,7 +4,7 @@ Columns are dicts of 1-D float64 arrays keyed by the names of ``CASE_COLUMNS``; 
 the index of its name in ``CHOICES``, an unset optional parameter NaN. Invalid values raise
 ``restitution.RestitutionError`` naming the parameter, the value and the case (row)."""
 
-from typing import Mapping
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -19,7 +19,9 @@ __all__ = [
     "check_shape",
     "check_theta",
     "convex_template",
+    "last_call_diagnostics",
     "max_dt_factor_for",
+    "run_case",
     "run_cases",
     "trace_case",
 ]
@@ -42,10 +44,15 @@ def run_cases(
 def check_cases(columns: _Columns, vertices: npt.NDArray[np.float64] | None, threads: int = 0) -> None:
     """Every rule of every case, without running it; raises naming the first bad case."""
 
+def run_case(row: Sequence[float], vertices: npt.NDArray[np.float64] | None) -> tuple[Any, ...]:
+    """The one impact of ``row`` (a value per ``CASE_COLUMNS`` name, in order), on the calling
+    thread with the GIL released: its record's values in ``RECORD_COLUMNS`` order (None where
+    undefined)."""
+
 def trace_case(
-    columns: _Columns, vertices: npt.NDArray[np.float64] | None
-) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
-    """The single case in ``columns``: (record columns, per-step trace columns)."""
+    row: Sequence[float], vertices: npt.NDArray[np.float64] | None
+) -> tuple[tuple[Any, ...], dict[str, np.ndarray]]:
+    """The one impact of ``row``, as ``run_case``: (its record's values, per-step trace columns)."""
 
 def max_dt_factor_for(
     columns: _Columns, vertices: npt.NDArray[np.float64] | None, explain: bool = False
@@ -62,3 +69,8 @@ def check_theta(theta_deg: float) -> None:
 
 def convex_template(vertices: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], float]:
     """A convex polygon checked by the engine: (vertices about the centroid over the circumradius, circumradius)."""
+
+def last_call_diagnostics() -> dict[str, float | int]:
+    """Diagnostics of the last engine call on this thread (``run_cases``, ``run_case``, ``trace_case``):
+    ``engine_s``, the engine's own seconds (measured in Rust), and ``waits_after_engine``, the
+    waits for a poll the call made after the engine had returned. For benchmarks and tests."""

@@ -10,7 +10,7 @@ and that a choice's name exists (the engine takes its index).
 from __future__ import annotations
 
 import numbers
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import polars as pl
@@ -20,6 +20,8 @@ from .errors import RestitutionError
 
 #: Per-case input columns, in the engine's order (all float64; a choice holds its code).
 CASE_COLUMNS: tuple[str, ...] = tuple(_core.CASE_COLUMNS)
+#: Each case column's position in a row.
+COLUMN_INDEX: dict[str, int] = {name: k for k, name in enumerate(CASE_COLUMNS)}
 #: Record columns, in output order.
 RECORD_COLUMNS: tuple[str, ...] = tuple(_core.RECORD_COLUMNS)
 #: Per-step trace columns.
@@ -86,6 +88,19 @@ def columns(base: Mapping[str, float], per_case: Mapping[str, np.ndarray], n: in
     return out
 
 
+def row(values: Mapping[str, float]) -> tuple[float, ...]:
+    """One case as a row: its value of every engine column, in ``CASE_COLUMNS`` order."""
+    return tuple(values[name] for name in CASE_COLUMNS)
+
+
+def with_values(base: tuple[float, ...], **values: float) -> list[float]:
+    """A copy of the row ``base`` with some columns set (each named by its ``CASE_COLUMNS`` name)."""
+    out = list(base)
+    for name, value in values.items():
+        out[COLUMN_INDEX[name]] = value
+    return out
+
+
 def check(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None) -> None:
     """Every rule of every case, without running it: raises :class:`RestitutionError` naming
     the parameter, its value and the case (the row of ``cols``)."""
@@ -97,10 +112,16 @@ def run(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None, threads: in
     return dict(_core.run_cases(cols, vertices, threads))
 
 
-def trace(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None) -> tuple[dict[str, np.ndarray], pl.DataFrame]:
-    """Runs the single case in ``cols``: (record columns, per-step trace frame)."""
-    raw, tr = _core.trace_case(cols, vertices)
-    return dict(raw), pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
+def run_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[Any, ...]:
+    """Runs the one case of ``row`` (GIL released, on this thread): its record's values in
+    ``RECORD_COLUMNS`` order, None where undefined."""
+    return _core.run_case(row, vertices)
+
+
+def trace_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[tuple[Any, ...], pl.DataFrame]:
+    """Runs the one case of ``row``: (its record's values as :func:`run_one`, per-step trace frame)."""
+    values, tr = _core.trace_case(row, vertices)
+    return values, pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
 
 
 def dt_bounds(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None,
@@ -125,17 +146,3 @@ def _record_series(raw: Mapping[str, np.ndarray], name: str) -> pl.Series:
     if valid is None or valid.all():
         return series
     return series.scatter(np.flatnonzero(~valid), None)
-
-
-def record_values(raw: Mapping[str, np.ndarray], i: int) -> dict[str, Any]:
-    """Row ``i`` of the record columns as plain Python values (None where undefined), without a
-    frame: what :func:`restitution.simulate` returns for its one impact."""
-    out: dict[str, Any] = {}
-    for name in RECORD_COLUMNS:
-        valid = raw.get(f"{name}_valid")
-        value = raw[name][i]
-        if valid is not None and not valid[i]:
-            out[name] = None
-        else:  # numpy scalars as Python ones; `stop` is a list of str already
-            out[name] = value.item() if isinstance(value, np.generic) else value
-    return out

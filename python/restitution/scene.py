@@ -110,10 +110,14 @@ class Scene:
         if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon, Sphere)):
             raise TypeError("`shape` must be Disc, RegularPolygon, ConvexPolygon or Sphere "
                             f"(found {type(self.shape).__name__})")
+        values = self.engine_values()
         try:
-            _engine.check(_engine.columns(self.engine_values(), {}, 1), self.template_vertices())
+            _engine.check(_engine.columns(values, {}, 1), self.template_vertices())
         except _engine.RestitutionError as err:
             raise err.at_case(None) from None  # a scene is not a case of a sweep
+        # Its row of engine columns, kept (the scene is frozen): each simulate() writes only
+        # its angle and spin into a copy.
+        object.__setattr__(self, "_row", _engine.row(values))
 
     def engine_values(self) -> dict[str, float]:
         """The scene's value of every engine column (``theta_deg`` 90 and ``omega_in`` 0 until
@@ -136,6 +140,14 @@ class Scene:
             else:
                 values[name] = _engine.real(name, value)
         return values
+
+    def _engine_row(self) -> tuple[float, ...]:
+        """:meth:`engine_values` as one row in ``CASE_COLUMNS`` order, kept from construction."""
+        row: tuple[float, ...] | None = self.__dict__.get("_row")
+        if row is None:  # unpickled from a version that did not keep it
+            row = _engine.row(self.engine_values())
+            object.__setattr__(self, "_row", row)
+        return row
 
     def template_vertices(self) -> Any:
         """Unit-circumradius vertices of a ConvexPolygon scene (the engine scales them by r), else None."""

@@ -1,9 +1,12 @@
-//! Interrupting a running impact or sweep from another thread (a Ctrl-C watcher).
+//! Interrupting a running impact or sweep: from another thread (a Ctrl-C watcher), or from the
+//! engine's own thread through a watch the token asks at each poll.
 //!
 //! The integration loops poll the token every [`POLL_STEPS`] steps (one relaxed atomic load,
 //! measured to cost nothing: see `benches/impact.rs`) and return
 //! [`Error::Interrupted`](crate::error::Error::Interrupted) once it is set; a sweep stops all its
-//! workers the same way.
+//! workers the same way. A token made by [`Cancel::watched`] also calls its watch at each poll:
+//! how a caller whose signal handlers can run only on the thread that runs the engine (Python's
+//! main thread) stops it without a second thread.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -13,7 +16,11 @@ pub const POLL_STEPS: u64 = 4096;
 
 /// A cancellation token: set once from any thread, seen by every loop polling it.
 #[derive(Debug, Default)]
-pub struct Cancel(AtomicBool);
+pub struct Cancel {
+    set: AtomicBool,
+    /// Asked at each poll whether to stop (see [`Cancel::watched`]).
+    watch: Option<fn() -> bool>,
+}
 
 /// A token that is never set, for the entry points without one.
 static NEVER: Cancel = Cancel::new();
@@ -21,7 +28,22 @@ static NEVER: Cancel = Cancel::new();
 impl Cancel {
     /// A token not yet set.
     pub const fn new() -> Self {
-        Cancel(AtomicBool::new(false))
+        Cancel {
+            set: AtomicBool::new(false),
+            watch: None,
+        }
+    }
+
+    /// A token not yet set that every poll (each [`POLL_STEPS`] steps, on the thread running
+    /// the loop) also asks `watch` whether to stop; `true` sets the token. The watch runs on
+    /// every thread that polls, so a token for a sweep over several threads should not have
+    /// one; it should be cheap, as it runs about every millisecond of engine time (a watch
+    /// that takes a lock or a clock should throttle itself).
+    pub const fn watched(watch: fn() -> bool) -> Self {
+        Cancel {
+            set: AtomicBool::new(false),
+            watch: Some(watch),
+        }
     }
 
     /// A shared token that nothing sets.
@@ -31,27 +53,37 @@ impl Cancel {
 
     /// Asks every loop polling this token to stop.
     pub fn cancel(&self) {
-        self.0.store(true, Ordering::Relaxed);
+        self.set.store(true, Ordering::Relaxed);
     }
 
     /// Clears the token, so that it can serve a new run.
     pub fn reset(&self) {
-        self.0.store(false, Ordering::Relaxed);
+        self.set.store(false, Ordering::Relaxed);
     }
 
     /// Whether the token has been set.
     #[inline(always)]
     pub fn is_cancelled(&self) -> bool {
-        self.0.load(Ordering::Relaxed)
+        self.set.load(Ordering::Relaxed)
     }
 
     /// `Err(Error::Interrupted)` once the token is set, polled only every [`POLL_STEPS`]
-    /// steps (`step` counts the loop's iterations).
+    /// steps (`step` counts the loop's iterations); a watched token asks its watch first.
     #[inline(always)]
     pub(crate) fn poll(&self, step: u64) -> crate::error::Result<()> {
-        if step & (POLL_STEPS - 1) == 0 && self.is_cancelled() {
+        if step & (POLL_STEPS - 1) == 0 && self.stop_requested() {
             return Err(crate::error::Error::Interrupted);
         }
         Ok(())
+    }
+
+    /// Whether the token is set, after asking the watch if there is one (out of line: it runs
+    /// once per [`POLL_STEPS`] steps, and keeps the loops' hot path as small as before).
+    #[inline(never)]
+    fn stop_requested(&self) -> bool {
+        if self.watch.is_some_and(|watch| watch()) {
+            self.cancel();
+        }
+        self.is_cancelled()
     }
 }

@@ -4,8 +4,8 @@
 
 use restitution_core::{
     contact_steps, estimate_max_depth, run_cases, run_cases_cancellable, simulate,
-    simulate_cancellable, simulate_with_trace_cancellable, Cancel, Case, Error, Initial, Model,
-    Scene, Shape, StopReason, BUDGET_CONTACTS, BUDGET_SLACK_STEPS,
+    simulate_cancellable, simulate_with_trace_cancellable, Cancel, Case, Error, Initial,
+    Integrator, Model, Scene, Shape, StopReason, BUDGET_CONTACTS, BUDGET_SLACK_STEPS,
 };
 use std::time::Duration;
 
@@ -157,4 +157,41 @@ fn a_token_set_from_another_thread_stops_a_running_sweep() {
         run_cases_cancellable(&cases, 2, &cancel)
     });
     assert!(matches!(result, Err((_, Error::Interrupted))), "{result:?}");
+}
+
+/// How often `stop_on_third_ask` has been asked.
+static ASKED: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A watch that asks to stop the third time it is asked.
+fn stop_on_third_ask() -> bool {
+    ASKED.fetch_add(1, std::sync::atomic::Ordering::Relaxed) >= 2
+}
+
+#[test]
+fn a_watched_token_asks_its_watch_at_each_poll_and_stops_when_told() {
+    // The long impact is in contact from its first step, one step at a time: polls at steps 0,
+    // POLL_STEPS and 2 POLL_STEPS, the third of which is told to stop.
+    let (scene, init) = long_scene();
+    let cancel = Cancel::watched(stop_on_third_ask);
+    assert_eq!(
+        simulate_cancellable(&scene, &init, &cancel),
+        Err(Error::Interrupted)
+    );
+    assert_eq!(ASKED.load(std::sync::atomic::Ordering::Relaxed), 3);
+    assert!(cancel.is_cancelled());
+    // A watch that never asks to stop leaves the record as it was, on either path.
+    fn never() -> bool {
+        false
+    }
+    for integrator in [Integrator::Gear5, Integrator::Adaptive] {
+        let scene = Scene {
+            integrator,
+            ..Scene::default()
+        };
+        let init = Initial::from_angle(0.0357, 45.0, 0.0, 0.0);
+        assert_eq!(
+            simulate_cancellable(&scene, &init, &Cancel::watched(never)),
+            simulate(&scene, &init)
+        );
+    }
 }

@@ -1,14 +1,18 @@
 //! `restitution._core`: the compiled part of the Python package. Thin by design: it reads the
 //! per-case columns of the engine's one schema by name (`restitution_core::CASE_COLUMNS`),
-//! runs the cases with the GIL released and returns the record's columns by name
-//! (`restitution_core::RECORD_COLUMNS`). Every rule lives in the core; its errors become
+//! or one case as a row in that order, runs the cases with the GIL released and Ctrl-C
+//! watched, and returns the record's columns by name (`restitution_core::RECORD_COLUMNS`), or
+//! one record as a tuple in that order. Every rule lives in the core; its errors become
 //! `restitution.RestitutionError` carrying the parameter, the value and the case.
 
 use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
 use pyo3::exceptions::{PyKeyError, PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyBool, PyDict, PyFloat, PyString, PyTuple};
 use restitution_core as core;
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 /// A core error and the case it belongs to, as a Python exception (a foreign error type needs
 /// a local newtype).
@@ -172,33 +176,144 @@ fn floats<'py>(
     )
 }
 
-/// Runs `work` with the GIL released on a worker thread while this thread watches for Ctrl-C:
-/// every 20 ms it takes the GIL and lets Python run its signal handlers (they only run on the
-/// main thread, and not while the engine holds it). On KeyboardInterrupt (or any error a
-/// handler raises) it sets the engine's token, waits for the worker to stop (within
-/// `POLL_STEPS` steps) and raises that error; the work's result is dropped.
+/// How often a running call lets Python run its signal handlers (Ctrl-C): with the engine's
+/// polls every `POLL_STEPS` steps on top, a call ends within a few tens of milliseconds.
+const SIGNAL_PERIOD: Duration = Duration::from_millis(20);
+
+/// What the last engine call made on this thread measured, for diagnostics
+/// ([`last_call_diagnostics`]): the engine's own time and the waits after it returned.
+#[derive(Clone, Copy, Default)]
+struct CallDiagnostics {
+    /// Seconds from the engine's entry to its return (the work alone, without the binding).
+    engine_s: f64,
+    /// Times the calling thread went back to wait for the watcher's next poll after the
+    /// engine had already returned (each such wait could last a whole `SIGNAL_PERIOD`). None
+    /// since issue 27: `run_here` has no watcher, and `run_watched` ends on the flag its worker
+    /// sets before waking it (the loop it replaced read `is_finished()`, false until the worker
+    /// thread had ended, and waited again in 10-50 % of calls).
+    waits_after_engine: u64,
+}
+
+/// The Ctrl-C watch of a call running the engine on this thread: when Python's signal
+/// handlers last ran, and the error one of them raised.
+struct Watch {
+    last: Instant,
+    raised: Option<PyErr>,
+}
+
+thread_local! {
+    static LAST_CALL: std::cell::Cell<CallDiagnostics> =
+        const { std::cell::Cell::new(CallDiagnostics { engine_s: 0.0, waits_after_engine: 0 }) };
+    static WATCH: RefCell<Option<Watch>> = const { RefCell::new(None) };
+}
+
+/// Runs `work`, the engine's part of a call, with the GIL released, so that Ctrl-C ends it
+/// (Python runs signal handlers only on the main thread, and only with the GIL; the engine
+/// runs without it). Work on one thread (`parallel` false) runs on this thread and its token's
+/// polls let the handlers run ([`signals_raised`]); parallel work runs on a worker while this
+/// thread watches ([`run_watched`]). On KeyboardInterrupt (or any error a handler raises) the
+/// token stops the engine within `POLL_STEPS` steps, the work's result is dropped and the
+/// error is raised.
 fn interruptible<T: Send>(
     py: Python<'_>,
+    parallel: bool,
     work: impl FnOnce(&core::Cancel) -> T + Send,
 ) -> PyResult<T> {
+    let (result, diagnostics) = if parallel {
+        run_watched(py, work)
+    } else {
+        run_here(py, work)
+    };
+    LAST_CALL.with(|last| last.set(diagnostics));
+    result
+}
+
+/// `work` on this thread, GIL released, its token watched by [`signals_raised`]: no thread to
+/// start, and the call ends when the engine returns.
+fn run_here<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&core::Cancel) -> T + Send,
+) -> (PyResult<T>, CallDiagnostics) {
+    /// Puts back the watch of an enclosing call (a signal handler may run the engine too).
+    struct Restore(Option<Watch>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            WATCH.set(self.0.take());
+        }
+    }
+    let fresh = Watch {
+        last: Instant::now(),
+        raised: None,
+    };
+    let outer = Restore(WATCH.replace(Some(fresh)));
+    let cancel = core::Cancel::watched(signals_raised);
+    let (out, engine_s) = py.detach(|| {
+        let start = Instant::now();
+        let out = work(&cancel);
+        (out, start.elapsed().as_secs_f64())
+    });
+    let raised = WATCH.take().and_then(|watch| watch.raised);
+    drop(outer);
+    let diagnostics = CallDiagnostics {
+        engine_s,
+        waits_after_engine: 0,
+    };
+    (raised.map_or(Ok(out), Err), diagnostics)
+}
+
+/// The watch of [`run_here`]'s token, called at the engine's polls on this thread: at most every
+/// `SIGNAL_PERIOD` it takes the GIL and lets Python run its signal handlers; true once one has
+/// raised (its error kept for the call to raise). False on a thread without a running call.
+fn signals_raised() -> bool {
+    let due = WATCH.with_borrow(|watch| match watch {
+        None => false,
+        Some(w) => w.raised.is_none() && w.last.elapsed() >= SIGNAL_PERIOD,
+    });
+    if !due {
+        return WATCH.with_borrow(|watch| watch.as_ref().is_some_and(|w| w.raised.is_some()));
+    }
+    // No borrow held while the handlers run: one of them may run the engine itself.
+    let raised = Python::attach(|py| py.check_signals()).err();
+    WATCH.with_borrow_mut(|watch| {
+        let watch = watch.as_mut().expect("set by run_here");
+        watch.last = Instant::now();
+        watch.raised = raised;
+        watch.raised.is_some()
+    })
+}
+
+/// `work` on a worker thread, GIL released, while this thread waits for it in steps of
+/// `SIGNAL_PERIOD` and lets Python's signal handlers run between them; the worker sets
+/// `returned` before waking this thread, so a wake-up is never mistaken for a timeout.
+fn run_watched<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&core::Cancel) -> T + Send,
+) -> (PyResult<T>, CallDiagnostics) {
     let cancel = core::Cancel::new();
     let watcher = std::thread::current();
-    std::thread::scope(|scope| {
+    let returned = AtomicBool::new(false);
+    let mut diagnostics = CallDiagnostics::default();
+    let result = std::thread::scope(|scope| {
         let worker = scope.spawn(|| {
+            let start = Instant::now();
             let out = work(&cancel);
+            let engine_s = start.elapsed().as_secs_f64();
+            returned.store(true, Ordering::Release);
             watcher.unpark();
-            out
+            (out, engine_s)
         });
         loop {
             py.detach(|| {
-                if !worker.is_finished() {
-                    std::thread::park_timeout(std::time::Duration::from_millis(20));
+                if !returned.load(Ordering::Acquire) {
+                    std::thread::park_timeout(SIGNAL_PERIOD);
                 }
             });
-            if worker.is_finished() {
-                return Ok(worker
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic)));
+            if returned.load(Ordering::Acquire) {
+                let (out, engine_s) = py
+                    .detach(|| worker.join())
+                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic));
+                diagnostics.engine_s = engine_s;
+                return Ok(out);
             }
             if let Err(err) = py.check_signals() {
                 cancel.cancel();
@@ -206,7 +321,23 @@ fn interruptible<T: Send>(
                 return Err(err);
             }
         }
-    })
+    });
+    (result, diagnostics)
+}
+
+/// Diagnostics of the last call on this thread that ran the engine (`run_cases`, `run_case`,
+/// `trace_case`):
+/// `engine_s`, the seconds the engine itself took (from its entry to its return, measured in
+/// Rust), and `waits_after_engine`, how many times the call went back to wait for a poll after
+/// the engine had returned (0 when the call ended as soon as its work did). For benchmarks and
+/// tests of the binding's own cost; not part of the package's API.
+#[pyfunction]
+fn last_call_diagnostics(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let last = LAST_CALL.with(std::cell::Cell::get);
+    let out = PyDict::new(py);
+    out.set_item("engine_s", last.engine_s)?;
+    out.set_item("waits_after_engine", last.waits_after_engine)?;
+    Ok(out)
 }
 
 /// Runs one impact per row of `columns` in parallel on `threads` threads (0: all cores) with
@@ -220,11 +351,58 @@ fn run_cases<'py>(
     threads: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
     let cases = read_cases(columns, vertices)?;
-    let recs = interruptible(py, |cancel| {
+    // One case, or one thread: the calling thread runs it (results do not depend on threads).
+    let parallel = threads != 1 && cases.len() > 1;
+    let threads = if parallel { threads } else { 1 };
+    let recs = interruptible(py, parallel, |cancel| {
         core::run_cases_cancellable(&cases, threads, cancel)
     })?
     .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
     records_to_dict(py, &recs)
+}
+
+/// The one case of `row` (a value per name of `CASE_COLUMNS`, in that order), as
+/// [`read_cases`] reads a row of columns.
+fn read_case(
+    row: [f64; core::CASE_COLUMNS.len()],
+    vertices: Option<PyReadonlyArray2<'_, f64>>,
+) -> PyResult<core::Case> {
+    let vertices = read_vertices(vertices)?;
+    let mut cases = core::cases_from_rows(std::iter::once(row), vertices.as_deref())
+        .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
+    Ok(cases.pop().expect("one row, one case"))
+}
+
+/// The record's values in `RECORD_COLUMNS` order, None where one is undefined.
+fn record_tuple<'py>(py: Python<'py>, rec: &core::Record) -> PyResult<Bound<'py, PyTuple>> {
+    let values = rec.cells().map(|cell| -> PyResult<Bound<'py, PyAny>> {
+        Ok(match cell {
+            core::Cell::F64(x) | core::Cell::Opt(Some(x)) => PyFloat::new(py, x).into_any(),
+            core::Cell::Opt(None) => py.None().into_bound(py),
+            core::Cell::Int(n) => n.into_pyobject(py)?.into_any(),
+            core::Cell::Bool(b) => PyBool::new(py, b).to_owned().into_any(),
+            core::Cell::Name(name) => PyString::new(py, name).into_any(),
+        })
+    });
+    PyTuple::new(py, values.into_iter().collect::<PyResult<Vec<_>>>()?)
+}
+
+/// Runs the one impact of `row` (a value per name of `CASE_COLUMNS`, in that order) on this
+/// thread with the GIL released; returns its record as a tuple in `RECORD_COLUMNS` order (None
+/// where a value is undefined): one impact without a column per value either way.
+#[pyfunction]
+#[pyo3(signature = (row, vertices))]
+fn run_case<'py>(
+    py: Python<'py>,
+    row: [f64; core::CASE_COLUMNS.len()],
+    vertices: Option<PyReadonlyArray2<'py, f64>>,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let case = read_case(row, vertices)?;
+    let rec = interruptible(py, false, |cancel| {
+        core::simulate_cancellable(&case.scene, &case.init, cancel)
+    })?
+    .map_err(|e| PyCoreError(e, Some(0)))?;
+    record_tuple(py, &rec)
 }
 
 /// Checks every rule of every case of `columns` without running it (in parallel, GIL
@@ -247,22 +425,17 @@ const TRACE_COLUMNS: [&str; 13] = [
     "t", "x", "y", "phi", "vx", "vy", "omega", "f_n", "f_t", "area", "depth", "xi", "stick",
 ];
 
-/// Runs the single case in `columns` (length 1) and returns (record columns, trace columns).
+/// Runs the one impact of `row` (as [`run_case`]) and returns (its record as a tuple, trace
+/// columns).
 #[pyfunction]
-#[pyo3(signature = (columns, vertices))]
+#[pyo3(signature = (row, vertices))]
 fn trace_case<'py>(
     py: Python<'py>,
-    columns: &Bound<'py, PyDict>,
+    row: [f64; core::CASE_COLUMNS.len()],
     vertices: Option<PyReadonlyArray2<'py, f64>>,
-) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyDict>)> {
-    let cases = read_cases(columns, vertices)?;
-    let [case] = cases.as_slice() else {
-        return Err(PyValueError::new_err(format!(
-            "trace_case takes exactly one case (found {})",
-            cases.len()
-        )));
-    };
-    let (rec, tr) = interruptible(py, |cancel| {
+) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
+    let case = read_case(row, vertices)?;
+    let (rec, tr) = interruptible(py, false, |cancel| {
         core::simulate_with_trace_cancellable(&case.scene, &case.init, cancel)
     })?
     .map_err(|e| PyCoreError(e, Some(0)))?;
@@ -274,7 +447,7 @@ fn trace_case<'py>(
         out.set_item(name, PyArray1::from_vec(py, col))?;
     }
     out.set_item(TRACE_COLUMNS[12], PyArray1::from_vec(py, tr.stick))?;
-    Ok((records_to_dict(py, &[rec])?, out))
+    Ok((record_tuple(py, &rec)?, out))
 }
 
 /// Largest `dt_factor` each case of `columns` accepts: its integrator's stability bound for
@@ -350,8 +523,8 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 mod _core {
     #[pymodule_export]
     use super::{
-        check_cases, check_shape, check_theta, convex_template, max_dt_factor_for, run_cases,
-        trace_case,
+        check_cases, check_shape, check_theta, convex_template, last_call_diagnostics,
+        max_dt_factor_for, run_case, run_cases, trace_case,
     };
 
     #[pymodule_init]
