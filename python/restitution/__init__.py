@@ -15,10 +15,12 @@ from .runs.dataset import read_dataset, sweep_to_dataset
 from .runs.sweep import sweep
 from .runs.distributions import Choice, LogNormal, Normal, Uniform
 from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemble
+from .collision import CollisionOperator
 from .study import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
 
 __all__ = [
     "Choice",
+    "CollisionOperator",
     "ConvexPolygon",
     "Disc",
     "Ensemble",
