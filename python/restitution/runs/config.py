@@ -208,7 +208,7 @@ def _scene(table: dict[str, Any], fail: Any) -> Scene:
     try:
         return Scene.paper(**fields) if preset == "paper" else Scene(**fields)
     except (ValueError, TypeError) as err:
-        raise fail(named_key("scene", err, fields), str(err)) from None
+        raise fail(_named_key("scene", err, fields), str(err)) from None
 
 
 def _shape(table: dict[str, Any], fail: Any) -> Any:
