@@ -64,7 +64,7 @@ def test_the_stated_error_holds_where_the_table_was_not_built(disc_op: rs.Collis
     vn, vt, om = states(theta, spin, v, DISC.r)
     got = disc_op(vn, vt, om)
     df = engine(DISC, theta, spin, v)
-    err = np.column_stack([np.abs(got[0] - df["vy_out"].to_numpy()) / -vn, np.abs(got[1] - df["vx_out"].to_numpy()) / v,
+    err = np.column_stack([np.abs(got[0] - df["vy_out"].to_numpy()) / v, np.abs(got[1] - df["vx_out"].to_numpy()) / v,
                            np.abs(got[2] - df["omega_out"].to_numpy()) * DISC.r / v])
     stated = disc_op.error
     share = (err > stated["p95_abs"].to_numpy()).mean(axis=0)
@@ -96,8 +96,9 @@ def test_at_a_node_the_stochastic_operator_draws_the_engines_draws(hexagon_op: r
     k = 24_000
     vn, vt, om = states(np.full(k, theta), np.full(k, spin), np.full(k, v), HEXAGON.r)
     drawn = hexagon_op(vn, vt, om, rng=np.random.default_rng(2))[0]
-    values, counts = np.unique(drawn, return_counts=True)
-    assert np.array_equal(np.sort(values), np.unique(engine_draws))
+    nearest = np.argmin(np.abs(drawn[:, None] - engine_draws[None, :]), axis=1)
+    np.testing.assert_allclose(drawn, engine_draws[nearest], rtol=1e-12)  # each draw is one of the engine's
+    counts = np.bincount(nearest, minlength=t.n_draws)
     # each of the n draws equally likely: chi^2 with n - 1 dof below its 0.999 quantile (49.7 for 23)
     expected = k / t.n_draws
     assert float(((counts - expected) ** 2 / expected).sum()) < 49.7
@@ -140,21 +141,21 @@ def test_save_load_round_trip_and_the_documented_schema(disc_op: rs.CollisionOpe
     meta = json.loads(pl.read_parquet_metadata(path)["restitution.operator"])
     table = pl.read_parquet(path)
     n_t, n_s, n_v, n_d = meta["shape"]
-    assert table.columns == ["i_theta", "i_spin", "i_v", "draw", "theta_deg", "spin", "v", "e_n", "vt_ratio",
+    assert table.columns == ["i_theta", "i_spin", "i_v", "draw", "theta_deg", "spin", "v", "vn_ratio", "vt_ratio",
                              "spin_out"]
     row = ((2 * n_s + 1) * n_v + 1) * n_d  # node (2, 1, 1), draw 0: rows in C order
     assert table.row(row)[:4] == (2, 1, 1, 0) and table["theta_deg"][row] == meta["grid"]["theta_deg"][2]
     theta, w, v = 0.5 * sum(meta["grid"]["theta_deg"][2:4]), meta["grid"]["spin"][1], meta["grid"]["v"][1]
-    e_n = 0.5 * (table["e_n"][row] + table["e_n"][row + n_s * n_v * n_d])  # halfway to node (3, 1, 1)
+    vn_ratio = 0.5 * (table["vn_ratio"][row] + table["vn_ratio"][row + n_s * n_v * n_d])  # halfway to node (3, 1, 1)
     vn, vt = -v * math.sin(math.radians(theta)), v * math.cos(math.radians(theta))
-    assert back(np.array([vn]), np.array([vt]), np.array([w * v / meta["r"]]))[0][0] == pytest.approx(-e_n * vn,
+    assert back(np.array([vn]), np.array([vt]), np.array([w * v / meta["r"]]))[0][0] == pytest.approx(vn_ratio * v,
                                                                                                         rel=1e-12)
 
 
 def test_a_damaged_file_is_refused(disc_op: rs.CollisionOperator, tmp_path: Path) -> None:
     path = disc_op.save(tmp_path / "op.parquet")
     meta = pl.read_parquet_metadata(path)
-    table = pl.read_parquet(path).with_columns(e_n=pl.col("e_n") * (1 + 1e-12))
+    table = pl.read_parquet(path).with_columns(vn_ratio=pl.col("vn_ratio") * (1 + 1e-12))
     table.write_parquet(tmp_path / "edited.parquet", metadata=meta)
     with pytest.raises(ValueError, match="does not match its sha256 digest"):
         rs.CollisionOperator.load(tmp_path / "edited.parquet")

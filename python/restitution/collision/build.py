@@ -70,7 +70,7 @@ class Evaluator:
         self.impacts += df.height
         self.timed_out += int(df["timed_out"].sum())
         vv = np.repeat(v, self.n)
-        out = np.column_stack([df["e_n"].to_numpy(), df["vx_out"].to_numpy() / vv,
+        out = np.column_stack([df["vy_out"].to_numpy() / vv, df["vx_out"].to_numpy() / vv,
                                df["omega_out"].to_numpy() * self.scene.r / vv])
         return out.reshape(len(pts), self.n, len(OUTPUTS))
 

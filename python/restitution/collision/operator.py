@@ -19,7 +19,7 @@ Examples
 >>> v_n, v_t, omega = op(np.array([-0.02, -0.03]), np.array([0.02, -0.01]), np.array([0.0, 0.5]))
 >>> bool(np.all(v_n > 0)), v_t.shape
 (True, (2,))
->>> float(op.error.filter(op.error["output"] == "e_n")["max_abs"][0]) < 1e-2
+>>> float(op.error.filter(op.error["output"] == "vn_ratio")["max_abs"][0]) < 1e-2
 True
 """
 
@@ -47,7 +47,7 @@ from .table import AXES, OUTPUTS, Table, outputs_to_state, state_to_table
 FORMAT = "restitution-operator/1"
 META_KEY = "restitution.operator"
 UNITS = {"theta_deg": "deg (from the plate; 90 head-on)", "spin": "1 (omega r / |v|, mirror-reduced)",
-         "v": "m/s (|v|, interpolated in log v)", "e_n": "1 (v_n' / (-v_n))", "vt_ratio": "1 (v_t' / |v|)",
+         "v": "m/s (|v|, interpolated in log v)", "vn_ratio": "1 (v_n' / |v|)", "vt_ratio": "1 (v_t' / |v|)",
          "spin_out": "1 (omega' r / |v|)", "r": "m"}
 
 
@@ -93,7 +93,7 @@ class CollisionOperator:
         seed : int
             Seeds the draws and the validation points.
         tol : float
-            Target absolute error of the interpolated mean outputs (e_n, v_t' / |v|, omega' r / |v|).
+            Target absolute error of the interpolated mean outputs (v_n' / |v|, v_t' / |v|, omega' r / |v|).
         max_rounds, max_nodes : int
             Refinement stops after this many rounds or before the grid exceeds this many nodes.
         n_check : int
@@ -121,13 +121,12 @@ class CollisionOperator:
         ``numpy.random.Generator`` (or a seed) a draw from its tabulated distribution. States
         outside the table's domain are clamped to its edges (:attr:`domain`).
         """
-        vn = np.asarray(v_n, dtype=np.float64)
-        theta, spin, speed, sign = state_to_table(vn, v_t, omega, self.table.r)
+        theta, spin, speed, sign = state_to_table(v_n, v_t, omega, self.table.r)
         if rng is None:
             out = self.table.mean_at(theta, spin, speed)
         else:
             out = self.table.sample_at(theta, spin, speed, np.random.default_rng(rng))
-        return outputs_to_state(out, np.broadcast_to(vn, speed.shape), speed, sign, self.table.r)
+        return outputs_to_state(out, speed, sign, self.table.r)
 
     @property
     def domain(self) -> dict[str, tuple[float, float]]:
@@ -175,7 +174,8 @@ class CollisionOperator:
         values = frame.select(OUTPUTS).to_numpy().reshape(*shape, len(OUTPUTS))
         if _digest(meta, values) != meta["sha256"]:
             raise ValueError(f"{path}: the table does not match its sha256 digest (damaged or edited)")
-        table = Table(*(np.asarray(meta["grid"][a]) for a in AXES), values, meta["r"])
+        grid = {a: np.asarray(meta["grid"][a], dtype=np.float64) for a in AXES}
+        table = Table(grid["theta_deg"], grid["spin"], grid["v"], values, meta["r"])
         fail = _config.failer(str(path))
         scene = _config._scene({**meta["scene"], "preset": "default"}, fail)
         return cls(table, scene=scene, vary={k: from_dict(d) for k, d in meta["vary"].items()}, seed=meta["seed"],
@@ -229,7 +229,7 @@ def _check_build(scene: Scene, vary: Mapping[str, Any] | None, n: int | None, to
     if not isinstance(scene, Scene):
         raise TypeError(f"`scene` must be a restitution.Scene (found {type(scene).__name__})")
     if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
-        raise RestitutionError("tol", tol, "finite and > 0 (absolute error of e_n, v_t' / |v|, omega' r / |v|)")
+        raise RestitutionError("tol", tol, "finite and > 0 (absolute error of v_n' / |v|, v_t' / |v|, omega' r / |v|)")
     if isinstance(n_check, bool) or not isinstance(n_check, int) or n_check < 2:
         raise RestitutionError("n_check", repr(n_check), "an integer >= 2")
     vary_d = {k: from_dict(d, f"vary.{k}") for k, d in (vary or {}).items()}

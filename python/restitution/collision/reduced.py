@@ -16,10 +16,10 @@ Coulomb's impulse mu (1 + e) m |v_n|, in which case it slides throughout.
 **Constant coefficients** (e_N, e_T): v_n' = -e_N v_n, v_t' = e_T v_t and, from the same impulse
 at the contact point, omega' = omega + (e_T - 1) v_t / (kappa r).
 
-The fit: least squares on the operator's three dimensionless outputs (e_n, v_t' / |v|,
+The fit: least squares on the operator's three dimensionless outputs (v_n' / |v|, v_t' / |v|,
 omega' r / |v|), at unit speed, at points spread uniformly over the table's domain (theta,
-spin, log v; not its nodes, which refinement crowds where the outcome bends). ``e`` (or e_N) is
-the mean of e_n; the tangential parameters minimise the other two outputs' squared errors
+spin, log v; not its nodes, which refinement crowds where the outcome bends). ``e`` (or e_N)
+fits v_n' / |v| = e sin theta (linear); the tangential parameters minimise the other two outputs' squared errors
 (mu, beta_0: a grid search then Levenberg-Marquardt; e_T: linear). Their standard errors
 come from the fit's covariance scaled by chi^2 / dof, the misfit treated as noise: they say how
 well the table fixes the parameters, not how good the model is; the ``error`` table (largest
@@ -123,8 +123,7 @@ def _fit_points(op: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray
 def _outputs(model: ReducedModel, vn: np.ndarray, vt: np.ndarray, w: np.ndarray) -> np.ndarray:
     """The model's dimensionless outputs at unit speed (r = 1: omega is omega r / |v|)."""
     m = ReducedModel(model.name, model.params, model.errors, model.kappa, 1.0, model.error)
-    vn2, vt2, w2 = m(vn, vt, w)
-    return np.column_stack([vn2 / -vn, vt2, w2])
+    return np.column_stack(m(vn, vt, w))
 
 
 def _error_table(op: Any, model: ReducedModel, pts: tuple[np.ndarray, ...]) -> pl.DataFrame:
@@ -135,16 +134,19 @@ def _error_table(op: Any, model: ReducedModel, pts: tuple[np.ndarray, ...]) -> p
                          "operator_max_abs": [stated.get(o) for o in OUTPUTS]})
 
 
-def _e_fit(target: np.ndarray) -> tuple[float, float | None]:
-    e_n = target[:, 0]
-    return float(e_n.mean()), float(e_n.std(ddof=1) / np.sqrt(e_n.size)) if e_n.size > 1 else None
+def _e_fit(vn: np.ndarray, target: np.ndarray) -> tuple[float, float | None]:
+    """Least squares of v_n' / |v| = e sin theta (sin theta = -v_n at unit speed), its standard error."""
+    s, y = -vn, target[:, 0]
+    e = float(s @ y / (s @ s))
+    chi2 = float(((e * s - y) ** 2).sum())
+    return e, float(np.sqrt(chi2 / (s.size - 1) / (s @ s))) if s.size > 1 else None
 
 
 def fit_constant(op: Any) -> ReducedModel:
     """Constant (e_N, e_T) fitted to ``op``'s table (see the module doc)."""
     kappa, pts = kappa_of(op.scene), _fit_points(op)
     vn, vt, w, target = pts
-    e_n, e_n_err = _e_fit(target)
+    e_n, e_n_err = _e_fit(vn, target)
     a = np.concatenate([vt, vt / kappa])
     b = np.concatenate([target[:, 1], target[:, 2] - w + vt / kappa])
     saa = float(a @ a)
@@ -160,7 +162,7 @@ def fit_walton(op: Any) -> ReducedModel:
     """Walton's (e, mu, beta_0) fitted to ``op``'s table (see the module doc)."""
     kappa, pts = kappa_of(op.scene), _fit_points(op)
     vn, vt, w, target = pts
-    e, e_err = _e_fit(target)
+    e, e_err = _e_fit(vn, target)
 
     def residuals(q: np.ndarray) -> np.ndarray:
         m = ReducedModel("walton", {"e": e, "mu": q[0], "beta_0": q[1]}, {}, kappa, 1.0, pl.DataFrame())

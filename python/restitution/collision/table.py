@@ -6,11 +6,15 @@ A table holds, at every node of a tensor grid over the pre-collision state
     spin        omega r / |v|: the rim speed over the impact speed (1), the mirror-reduced sign
     v           impact speed |v| (m/s), interpolated in log v
 
-and for each of ``n_draws`` draws of what the scene leaves open, three dimensionless outputs:
+and for each of ``n_draws`` draws of what the scene leaves open, three dimensionless outputs,
+the velocities after the impact over the speed before it:
 
-    e_n         v_n' / (-v_n)      normal restitution
-    vt_ratio    v_t' / |v|         tangential velocity after, over the speed
-    spin_out    omega' r / |v|     spin after, as a rim speed over the speed
+    vn_ratio    v_n' / |v|         normal velocity after (e_N sin theta)
+    vt_ratio    v_t' / |v|         tangential velocity after (e_T cos theta)
+    spin_out    omega' r / |v|     spin after, as a rim speed
+
+All three stay of order one at every angle (e_N itself grows without bound at grazing angles
+for a polygon, whose rotation feeds the rebound), so one absolute tolerance serves them all.
 
 The deterministic operator interpolates the draws' mean multilinearly; the stochastic one picks
 a neighbouring node with the multilinear weights as probabilities (one independent choice per
@@ -30,7 +34,7 @@ from ..errors import RestitutionError
 
 #: The table's axes and outputs, in storage order (docs/model.md, section 16.3).
 AXES = ("theta_deg", "spin", "v")
-OUTPUTS = ("e_n", "vt_ratio", "spin_out")
+OUTPUTS = ("vn_ratio", "vt_ratio", "spin_out")
 
 
 @dataclass(frozen=True)
@@ -155,12 +159,11 @@ def state_to_table(v_n: Any, v_t: Any, omega: Any, r: float) -> tuple[np.ndarray
     return theta, sign * om * r / speed, speed, sign
 
 
-def outputs_to_state(out: np.ndarray, v_n: np.ndarray, speed: np.ndarray, sign: np.ndarray,
-                     r: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def outputs_to_state(out: np.ndarray, speed: np.ndarray, sign: np.ndarray, r: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Table outputs (m, 3) back to (v_n', v_t', omega') in SI, the mirror undone."""
     shape = speed.shape
-    e_n, vt_ratio, spin_out = (out[:, k].reshape(shape) for k in range(3))
-    return -e_n * v_n, sign * speed * vt_ratio, sign * speed * spin_out / r
+    vn_ratio, vt_ratio, spin_out = (out[:, k].reshape(shape) for k in range(3))
+    return speed * vn_ratio, sign * speed * vt_ratio, sign * speed * spin_out / r
 
 
 __all__ = ["AXES", "OUTPUTS", "Table", "outputs_to_state", "state_to_table"]

@@ -90,18 +90,21 @@ class EnsembleSpec(SweepSpec):
             raise RestitutionError("n", repr(n), "an integer >= 1 (draws per point)")
         if on_refused not in ON_REFUSED:
             raise RestitutionError("on_refused", repr(on_refused), 'one of "raise", "skip"')
-        self.scene, self.n_draws, self.seed, self.on_refused = scene, int(n), check_seed(seed), on_refused
-        self.vary = _check_vary(vary, scene)
+        self.scene = scene
+        self.n_draws: int = int(n)
+        self.seed: int = check_seed(seed)
+        self.on_refused: str = on_refused
+        self.vary: dict[str, Distribution] = _check_vary(vary, scene)
         swept = set(cases.columns) if isinstance(cases, pl.DataFrame) else set(axes or {})
         both = sorted(swept & set(self.vary))
         if both:
             raise ValueError(f"`{both[0]}` is both swept and drawn: give it as an axis or in `vary`, not both")
         if "theta_deg" not in swept and "theta_deg" not in self.vary:
             raise ValueError("`theta_deg` is required: an axis (a scalar or 1-D array in (0, 90]) or drawn in `vary`")
-        self.points = _Points(scene, axes=axes, cases=cases)
+        self.points: SweepSpec = _Points(scene, axes=axes, cases=cases)
         self.cases = self.points.cases
         self.axes = self.points.axes
-        self.n_points = self.points.n_cases
+        self.n_points: int = self.points.n_cases
         self.n_cases = self.n_points * self.n_draws
         if on_refused == "raise":
             self._check_all()
