@@ -254,6 +254,8 @@ def wasserstein1(a: np.ndarray, wa: np.ndarray, b: np.ndarray) -> float:
     """The Wasserstein-1 distance between a weighted sample (a, wa) and an unweighted one (b):
     the integral of |F_a - F_b| over x.
 
+    Examples
+    --------
     >>> wasserstein1(np.array([0.0, 1.0]), np.array([0.5, 0.5]), np.array([0.5, 1.5]))
     0.5
     """

@@ -177,6 +177,8 @@ def _truncation(owner: str, lo: float | None, hi: float | None, cdf: Any) -> tup
 class Uniform(Distribution):
     """Uniform on ``[lo, hi)``.
 
+    Examples
+    --------
     >>> Uniform(0.0, 60.0).ppf(np.array([0.25])).tolist()
     [15.0]
     """
@@ -204,6 +206,8 @@ class Normal(Distribution):
     """Normal with ``mean`` and ``sd``, optionally truncated to ``[lo, hi]`` (exactly: the
     inverse CDF of the truncated law, not rejection).
 
+    Examples
+    --------
     >>> x = Normal(0.5, 0.5, lo=0.0).draw(seed=3, name="mu", start=0, stop=10000)
     >>> bool(x.min() >= 0.0), round(float(x.mean()), 3)   # the truncated law's: 0.5 + 0.5 phi(1) / Phi(1) = 0.644
     (True, 0.644)
@@ -252,6 +256,8 @@ class LogNormal(Distribution):
     """``exp(N(mean_log, sd_log))``, optionally truncated to ``[lo, hi]`` (``lo`` >= 0): the
     median is ``exp(mean_log)``.
 
+    Examples
+    --------
     >>> round(float(LogNormal(0.0, 0.5).ppf(np.array([0.5]))[0]), 12)    # the median
     1.0
     """
@@ -295,6 +301,8 @@ class Choice(Distribution):
     """One of ``values`` with probabilities ``p`` (default: equal). Values are numbers, or the
     names of a choice parameter (``integrator``, ``normal_law``, ...).
 
+    Examples
+    --------
     >>> Choice([3, 4, 6], p=[0.5, 0.25, 0.25]).ppf(np.array([0.1, 0.6, 0.9])).tolist()
     [3, 4, 6]
     """

@@ -51,6 +51,8 @@ def _estimates(x: np.ndarray) -> np.ndarray:
 def wilson(k: int, n: int, level: float = 0.95) -> tuple[float, float]:
     """Wilson's score interval of a binomial proportion k / n.
 
+    Examples
+    --------
     >>> [round(b, 4) for b in wilson(0, 10)]
     [0.0, 0.2775]
     """
