@@ -92,7 +92,8 @@ def test_at_a_node_the_stochastic_operator_draws_the_engines_draws(hexagon_op: r
     t = hexagon_op.table
     theta, spin, v = t.theta_deg[4], t.spin[1], t.v[0]
     engine_draws = rs.ensemble(HEXAGON, t.n_draws, vary={"phi0_deg": rs.Uniform(0.0, 60.0)}, seed=hexagon_op.seed,
-                               theta_deg=theta, omega_in=spin * v / HEXAGON.r, v=v).samples["vy_out"].to_numpy()
+                               sampling="stratified", theta_deg=theta, omega_in=spin * v / HEXAGON.r,
+                               v=v).samples["vy_out"].to_numpy()
     k = 24_000
     vn, vt, om = states(np.full(k, theta), np.full(k, spin), np.full(k, v), HEXAGON.r)
     drawn = hexagon_op(vn, vt, om, rng=np.random.default_rng(2))[0]

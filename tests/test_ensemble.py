@@ -132,3 +132,14 @@ def test_plots_are_written(tmp_path: Path) -> None:
     assert (tmp_path / "q.png").stat().st_size > 0 and (tmp_path / "h.png").stat().st_size > 0
     with pytest.raises(ValueError, match="require `x` a swept axis"):
         ens.plot_quantiles(x="v")
+
+
+def test_stratified_samples_fill_the_strata_on_any_chunking() -> None:
+    runs = [rs.ensemble(HEXAGON, 16, vary=VARY, seed=5, sampling="stratified", theta_deg=[30.0, 60.0], chunk_size=c,
+                        threads=t).samples for c, t in ((1, 1), (5, 2), (100, 2))]
+    for other in runs[1:]:
+        assert_frame_equal(runs[0], other, check_exact=True)
+    phi = runs[0].filter(pl.col("theta_deg") == 30.0)["phi0_deg"].to_numpy()
+    assert sorted(np.floor(phi / 60.0 * 16).astype(int).tolist()) == list(range(16))
+    with pytest.raises(rs.RestitutionError, match="require `sampling` one of"):
+        rs.ensemble(HEXAGON, 16, vary=VARY, seed=5, sampling="sobol", theta_deg=30.0)

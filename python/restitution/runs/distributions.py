@@ -21,6 +21,7 @@ True
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 import zlib
@@ -67,6 +68,32 @@ def _by_block(j: np.ndarray, block: Any) -> np.ndarray:
     blocks, which = np.unique(j // BLOCK, return_inverse=True)
     table = np.stack([block(int(b)) for b in blocks]) if blocks.size else np.empty((0, BLOCK))
     return table[which.reshape(j.shape), j % BLOCK]
+
+
+@functools.lru_cache(maxsize=32)
+def _permutation(seed: int, name: str, n: int) -> np.ndarray:
+    """The strata of draws 0 ... n - 1 of ``name``: a permutation of 0 ... n - 1 (read-only)."""
+    gen = np.random.Generator(np.random.Philox(np.random.SeedSequence(seed, spawn_key=(zlib.crc32(name.encode()),
+                                                                                       2**32 - 1, n))))
+    perm = gen.permutation(n)
+    perm.flags.writeable = False
+    return perm
+
+
+def stratified(seed: int, name: str, n: int) -> np.ndarray:
+    """The uniforms of ``n`` stratified draws (Latin hypercube across parameters): draw j's
+    uniform is (k_j + u_j) / n, with k a seeded permutation of 0 ... n - 1 and u_j the draw's
+    own uniform, so each of the n equal strata of (0, 1) holds exactly one draw of each
+    parameter. Each draw is still uniform; a mean over the n draws errs as O(1 / n) for a smooth
+    function of one parameter (O(1 / sqrt(n)) for independent draws).
+
+    Examples
+    --------
+    >>> u = stratified(1, "phi0_deg", 8)
+    >>> sorted((u * 8).astype(int).tolist())
+    [0, 1, 2, 3, 4, 5, 6, 7]
+    """
+    return Uniform(0.0, 1.0).draw_at(seed, name, np.arange(n), strata=n)
 
 
 def check_seed(seed: Any) -> int:
@@ -147,11 +174,22 @@ class Distribution:
         """Draws ``start:stop`` of parameter ``name`` from ``seed`` (see the module doc)."""
         return self.draw_at(seed, name, np.arange(start, stop, dtype=np.int64))
 
-    def draw_at(self, seed: int, name: str, j: np.ndarray) -> np.ndarray:
+    def draw_at(self, seed: int, name: str, j: np.ndarray, *, strata: int | None = None) -> np.ndarray:
         """The draws numbered ``j`` of parameter ``name`` from ``seed`` (bit for bit the same
-        whatever else is drawn with them)."""
+        whatever else is drawn with them). With ``strata`` = n, draws 0 ... n - 1 are stratified
+        (see :func:`stratified`)."""
         seed = check_seed(seed)
-        return _by_block(np.asarray(j, dtype=np.int64), lambda b: self.ppf(_block(seed, name, b)))
+        perm = _permutation(seed, name, strata) if strata else None
+
+        def block(b: int) -> np.ndarray:
+            u = _block(seed, name, b)
+            if perm is not None:
+                k = np.arange(b * BLOCK, (b + 1) * BLOCK)
+                inside = k < len(perm)
+                u = np.where(inside, (perm[np.minimum(k, len(perm) - 1)] + u) / len(perm), u)
+            return self.ppf(u)
+
+        return _by_block(np.asarray(j, dtype=np.int64), block)
 
     def to_dict(self) -> dict[str, Any]:
         """The TOML / manifest form: ``{"dist": kind, <parameters>}`` (unset bounds left out)."""
@@ -368,4 +406,4 @@ def from_dict(d: Any, where: str = "distribution") -> Distribution:
         raise ValueError(f"{where}: {err}; keys of dist = {d['dist']!r}: {', '.join(allowed)}") from None
 
 
-__all__ = ["BLOCK", "Choice", "Distribution", "LogNormal", "Normal", "Uniform", "from_dict", "uniforms"]
+__all__ = ["BLOCK", "Choice", "Distribution", "LogNormal", "Normal", "Uniform", "from_dict", "stratified", "uniforms"]

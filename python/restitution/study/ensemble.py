@@ -147,8 +147,8 @@ class Ensemble:
 
 
 def ensemble(scene: Scene, n: int, *, vary: Mapping[str, Any], seed: int, cases: pl.DataFrame | None = None,
-             on_refused: str = "raise", threads: int | None = None, progress: bool | None = None,
-             chunk_size: int | None = None, **axes: Any) -> Ensemble:
+             on_refused: str = "raise", sampling: str = "random", threads: int | None = None,
+             progress: bool | None = None, chunk_size: int | None = None, **axes: Any) -> Ensemble:
     """Draws ``n`` impacts at every point of ``axes`` (or row of ``cases``), ``vary`` drawn.
 
     Parameters
@@ -169,6 +169,10 @@ def ensemble(scene: Scene, n: int, *, vary: Mapping[str, Any], seed: int, cases:
     on_refused : {"raise", "skip"}
         Draws the engine refuses: raise before anything runs (default), or keep them as rows
         with null records and the reason in ``refused`` (:mod:`restitution.runs.ensemble`).
+    sampling : {"random", "stratified"}
+        Independent draws (default), or stratified ones: each parameter's n draws fall one in
+        each of n equal-probability strata (a Latin hypercube), so means over them converge much
+        faster (docs/model.md, section 16.1); the bootstrap intervals are then conservative.
     threads, progress, chunk_size :
         As for :func:`restitution.sweep`; the samples do not depend on them.
     **axes
@@ -178,14 +182,16 @@ def ensemble(scene: Scene, n: int, *, vary: Mapping[str, Any], seed: int, cases:
     -------
     Ensemble
     """
-    spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused)
+    spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused,
+                        sampling=sampling)
     frame = run_in_memory(spec, threads=threads, progress=progress, chunk_size=chunk_size)
     return Ensemble(frame, point_names=spec.point_names, vary=spec.vary, n=spec.n_draws, seed=spec.seed)
 
 
 def ensemble_to_dataset(scene: Scene | EnsembleSpec, out: str | Path, n: int | None = None, *,
                         vary: Mapping[str, Any] | None = None, seed: int | None = None,
-                        cases: pl.DataFrame | None = None, on_refused: str = "raise", chunk_size: int | None = None,
+                        cases: pl.DataFrame | None = None, on_refused: str = "raise", sampling: str = "random",
+                        chunk_size: int | None = None,
                         threads: int | None = None, progress: bool | None = None, resume: bool = False,
                         scheduler: Any = None, **axes: Any) -> SweepResult:
     """:func:`ensemble`, streamed chunk by chunk to the Parquet dataset ``out`` (flat memory),
@@ -200,7 +206,8 @@ def ensemble_to_dataset(scene: Scene | EnsembleSpec, out: str | Path, n: int | N
     else:
         if n is None or vary is None or seed is None:
             raise ValueError("require `n`, `vary` and `seed` with a scene")
-        spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused)
+        spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused,
+                            sampling=sampling)
     return sweep_to_dataset(spec, out, chunk_size=chunk_size, threads=threads, progress=progress, resume=resume,
                             scheduler=scheduler)
 
