@@ -57,6 +57,9 @@ def test_samples_depend_on_the_seed_only(tmp_path: Path) -> None:
     again = rs.ensemble_to_dataset(HEXAGON, tmp_path / "d", 10, vary=VARY, seed=9, resume=True, **axes)
     assert (result.chunks_written, again.chunks_written, again.chunks_skipped) == (8, 1, 7)
     assert_frame_equal(rs.read_ensemble(tmp_path / "d").samples, runs[0], check_exact=True)
+    # read point by point from chunks of 8 (points of 10 straddle them): the in-memory summary
+    in_memory = rs.ensemble(HEXAGON, 10, vary=VARY, seed=9, **axes).summary(n_boot=50)
+    assert_frame_equal(rs.read_ensemble(tmp_path / "d").summary(n_boot=50), in_memory, check_exact=True)
     other_seed = rs.ensemble(HEXAGON, 10, vary=VARY, seed=10, **axes).samples
     assert other_seed["phi0_deg"].to_list() != runs[0]["phi0_deg"].to_list()
     with pytest.raises(ValueError, match=r"differs at ensemble.seed \(dataset: 9, now: 10\)"):

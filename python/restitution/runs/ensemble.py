@@ -46,8 +46,8 @@ ON_REFUSED = ("raise", "skip")
 #: How the n draws are made: independently, or stratified (a Latin hypercube: each parameter's
 #: n draws fall one in each of n equal-probability strata; :func:`distributions.stratified`).
 SAMPLING = ("random", "stratified")
-#: Cases checked per engine call in the up-front check.
-_CHECK_BLOCK = 65536
+#: Cases probed per engine call in the up-front check (a chunk's worth: memory stays a chunk's).
+_CHECK_BLOCK = 8192
 
 
 class _Points(SweepSpec):

@@ -28,12 +28,12 @@ True
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any, Mapping, Sequence
+from typing import Any, Iterator, Mapping, Sequence
 
 import numpy as np
 import polars as pl
 
-from ..runs.dataset import SweepResult, read_manifest, scan_dataset, sweep_to_dataset
+from ..runs.dataset import SweepResult, _part_files, read_manifest, scan_dataset, sweep_to_dataset
 from ..runs.ensemble import EnsembleSpec
 from ..runs.sweep import run_in_memory
 from ..scene import Scene
@@ -53,8 +53,9 @@ class Ensemble:
     """
 
     def __init__(self, samples: pl.DataFrame | pl.LazyFrame, *, point_names: Sequence[str],
-                 vary: Mapping[str, Any], n: int, seed: int) -> None:
+                 vary: Mapping[str, Any], n: int, seed: int, files: Sequence[Path] = ()) -> None:
         self._samples = samples
+        self._files = list(files)  # a dataset's chunk files, in case order: read block by block
         self.point_names: tuple[str, ...] = tuple(point_names)
         """The swept axes: one distribution per combination of their values."""
         self.vary = dict(vary)
@@ -99,12 +100,11 @@ class Ensemble:
             Seeds the bootstrap (default: the ensemble's seed; the intervals are reproducible).
         """
         quantities = list(quantities)
-        frame = self._columns(quantities)
+        names = self._check_quantities(quantities)
         rng = np.random.default_rng(np.random.SeedSequence(self.seed if seed is None else seed,
                                                            spawn_key=(_BOOT_KEY,)))
         rows = []
-        parts = (frame.partition_by(list(self.point_names), maintain_order=True) if self.point_names else [frame])
-        for part in parts:
+        for part in self._points([*self.point_names, *quantities, "timed_out", "refused"]):
             point = {name: part[name][0] for name in self.point_names}
             n_refused = int(part["refused"].is_not_null().sum())
             timed_out = part["timed_out"].fill_null(False)
@@ -113,16 +113,45 @@ class Ensemble:
                 d = stats.describe(values, level=level, n_boot=n_boot, rng=rng)
                 rows.append({**point, "quantity": q, "n": int(values.size), "n_refused": n_refused,
                              "n_timed_out": int(timed_out.sum()), **{k: d.get(k) for k in stats.COLUMNS[1:]}})
-        schema = {**{name: frame.schema[name] for name in self.point_names}, "quantity": pl.String, "n": pl.Int64,
+        schema = {**{name: names[name] for name in self.point_names}, "quantity": pl.String, "n": pl.Int64,
                   "n_refused": pl.Int64, "n_timed_out": pl.Int64, **{k: pl.Float64 for k in stats.COLUMNS[1:]}}
         return pl.DataFrame(rows, schema=schema)
 
-    def _columns(self, quantities: list[str]) -> pl.DataFrame:
+    def _points(self, columns: list[str]) -> Iterator[pl.DataFrame]:
+        """The samples' rows point by point, reading a block at a time: the rows of a point are
+        contiguous (case order), so memory holds one block and one point, whatever the size."""
+        carry: pl.DataFrame | None = None
+        for block in self._blocks(columns):
+            frame = block if carry is None else pl.concat([carry, block])
+            if not self.point_names:
+                carry = frame
+                continue
+            run = frame.select(pl.struct(list(self.point_names)).rle_id()).to_series()
+            last = run[-1]
+            done, carry = frame.filter(run < last), frame.filter(run == last)
+            yield from done.partition_by(list(self.point_names), maintain_order=True)
+        if carry is not None and carry.height:
+            yield carry
+
+    def _blocks(self, columns: list[str]) -> Iterator[pl.DataFrame]:
+        if self._files:
+            for f in self._files:
+                yield pl.read_parquet(f, columns=columns)
+        else:
+            yield from self.samples.select(columns).iter_slices(65536)
+
+    def _check_quantities(self, quantities: list[str]) -> dict[str, Any]:
+        """The samples' schema, once every quantity is one of its columns."""
         frame = self._samples if isinstance(self._samples, pl.LazyFrame) else self._samples.lazy()
-        names = frame.collect_schema().names()
-        unknown = [q for q in quantities if q not in names]
+        schema = dict(frame.collect_schema())
+        unknown = [q for q in quantities if q not in schema]
         if unknown:
             raise ValueError(f"`quantities` has columns the samples lack: {unknown}; e.g. {', '.join(QUANTITIES)}")
+        return schema
+
+    def _columns(self, quantities: list[str]) -> pl.DataFrame:
+        self._check_quantities(quantities)
+        frame = self._samples if isinstance(self._samples, pl.LazyFrame) else self._samples.lazy()
         return frame.select(*self.point_names, *quantities, "timed_out", "refused").collect()
 
     def plot_quantiles(self, quantities: Sequence[str] = QUANTITIES, *, x: str = "theta_deg",
@@ -223,8 +252,10 @@ def read_ensemble(path: str | Path, *, allow_partial: bool = False) -> Ensemble:
 
     vary = {k: from_dict(v) for k, v in m["spec"]["vary"].items()}
     points = [a for a in m["axes"] if a != "draw" and a not in vary]
-    return Ensemble(scan_dataset(path, allow_partial=allow_partial), point_names=points, vary=vary,
-                    n=ens["n"], seed=ens["seed"])
+    lazy = scan_dataset(path, allow_partial=allow_partial)  # refuses an unfinished dataset unless allowed
+    parts = _part_files(Path(path))
+    files = [parts[k] for k in sorted(parts) if k < m["n_chunks"]]
+    return Ensemble(lazy, point_names=points, vary=vary, n=ens["n"], seed=ens["seed"], files=files)
 
 
 __all__ = ["Ensemble", "QUANTITIES", "ensemble", "ensemble_to_dataset", "read_ensemble"]
