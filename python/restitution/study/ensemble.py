@@ -118,18 +118,19 @@ class Ensemble:
         return pl.DataFrame(rows, schema=schema)
 
     def _points(self, columns: list[str]) -> Iterator[pl.DataFrame]:
-        """The samples' rows point by point, reading a block at a time: the rows of a point are
-        contiguous (case order), so memory holds one block and one point, whatever the size."""
+        """The samples' rows point by point, reading a block at a time: a point's rows are
+        contiguous and its draws count up from 0 (case order), so a point begins where ``draw``
+        does not grow (two points with the same axes' values stay two), and memory holds one
+        block and one point, whatever the size."""
         carry: pl.DataFrame | None = None
-        for block in self._blocks(columns):
+        for block in self._blocks([*columns, "draw"]):
             frame = block if carry is None else pl.concat([carry, block])
-            if not self.point_names:
-                carry = frame
-                continue
-            run = frame.select(pl.struct(list(self.point_names)).rle_id()).to_series()
-            last = run[-1]
-            done, carry = frame.filter(run < last), frame.filter(run == last)
-            yield from done.partition_by(list(self.point_names), maintain_order=True)
+            point = (frame["draw"].diff().fill_null(1) <= 0).cum_sum()
+            last = point[-1]
+            done, carry = frame.filter(point < last), frame.filter(point == last)
+            if done.height:
+                yield from done.with_columns(_point=point.filter(point < last)).partition_by(
+                    "_point", maintain_order=True, include_key=False)
         if carry is not None and carry.height:
             yield carry
 
