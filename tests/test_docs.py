@@ -29,6 +29,7 @@ def test_docstring_examples(name: str) -> None:
 
 def test_the_public_api_has_examples() -> None:
     # The public entry points (docs/model.md, section 2; docs/api/) must show how they are called.
-    for name in ("restitution", "restitution.scene", "restitution.simulate", "restitution.runs.sweep"):
+    for name in ("restitution", "restitution.scene", "restitution.simulate", "restitution.runs.sweep",
+                 "restitution.study.ensemble", "restitution.runs.distributions", "restitution.collision.operator"):
         tests = doctest.DocTestFinder().find(importlib.import_module(name))
         assert sum(len(t.examples) for t in tests) > 0, name

@@ -6,7 +6,9 @@ arguments beyond its quick settings belongs in ``ARGS``.
 
 from __future__ import annotations
 
+import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -19,6 +21,17 @@ EXAMPLES = sorted((Path(__file__).resolve().parents[1] / "examples").glob("*.py"
 ARGS = {
     "quickstart": [],
     "accuracy_study": ["--quick", "--out", "{out}"],
+    "rough_slope": ["--quick", "--out", "{out}"],
+}
+
+#: The summary line an example must print, and what it must show (a check on the captured groups).
+NUMBER = r"([-+\d.e]+)"
+PINNED = {
+    # The stochastic operator's particles travel as far as the engine's, within 3 combined standard errors.
+    "rough_slope": (re.compile(r"rough slope \(\d+ particles x \d+ impacts\): disc per-impact error max v_n .+; "
+                               rf"hexagon mean distance engine {NUMBER}\+-{NUMBER}, stochastic {NUMBER}\+-{NUMBER}, "
+                               r"deterministic .+ m; operator .+x faster than the engine"),
+                    lambda e, se_e, s, se_s: abs(float(e) - float(s)) <= 3 * math.hypot(float(se_e), float(se_s))),
 }
 
 
@@ -28,10 +41,15 @@ def test_example_runs(path: Path, tmp_path: Path) -> None:
     done = subprocess.run([sys.executable, str(path), *args], capture_output=True, text=True, timeout=600,
                           env={**os.environ, "MPLBACKEND": "Agg"}, cwd=tmp_path)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-4000:]
+    if path.stem in PINNED:
+        pattern, holds = PINNED[path.stem]
+        found = pattern.search(done.stdout)
+        assert found, f"{path.name} did not print its summary line: {done.stdout[-1000:]}"
+        assert holds(*found.groups()), found.group(0)
     if "--out" in args:
         written = list(tmp_path.glob("*.png"))
         assert written, f"{path.name} wrote no figure to {tmp_path}: {done.stdout[-500:]}"
 
 
 def test_every_example_is_covered() -> None:
-    assert {p.stem for p in EXAMPLES} >= {"quickstart", "fig2_restitution", "accuracy_study"}
+    assert {p.stem for p in EXAMPLES} >= {"quickstart", "fig2_restitution", "accuracy_study", "rough_slope"}

@@ -13,22 +13,34 @@ from .shapes import ConvexPolygon, Disc, RegularPolygon, Sphere
 from .simulate import Record, simulate
 from .runs.dataset import read_dataset, sweep_to_dataset
 from .runs.sweep import sweep
+from .runs.distributions import Choice, LogNormal, Normal, Uniform
+from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemble
+from .collision import CollisionOperator
 from .study import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
 
 __all__ = [
+    "Choice",
+    "CollisionOperator",
     "ConvexPolygon",
     "Disc",
+    "Ensemble",
     "MAX_DT_FACTOR",
+    "LogNormal",
+    "Normal",
     "Record",
     "RegularPolygon",
     "RestitutionError",
     "Scene",
     "Sphere",
+    "Uniform",
     "__version__",
     "analysis",
     "calibrate",
+    "ensemble",
+    "ensemble_to_dataset",
     "inverse",
     "read_dataset",
+    "read_ensemble",
     "simulate",
     "sweep",
     "sweep_to_dataset",

@@ -11,8 +11,9 @@ NAME = "sweep"
 HELP = "many impacts from a TOML config into a Parquet dataset (resumable; threads or a Dask cluster)"
 
 
-def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("config", type=Path, help="TOML sweep config (see examples/sweep_config.toml)")
+def add_arguments(p: argparse.ArgumentParser, *, kind: str = "sweep") -> None:
+    """The options of a dataset run from a config (``restitution ensemble`` takes them too)."""
+    p.add_argument("config", type=Path, help=f"TOML {kind} config (see examples/{kind}_config.toml)")
     p.add_argument("--out", type=Path, required=True, help="dataset directory (new or empty, or the one to resume)")
     p.add_argument("--resume", action="store_true",
                    help="continue the interrupted sweep in --out (refused if the config changed)")

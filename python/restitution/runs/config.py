@@ -78,11 +78,29 @@ def load_config(path: str | Path) -> tuple[SweepSpec, int | None]:
 def spec_from_dict(data: Mapping[str, Any], *, source: str = "config",
                    base_dir: Path | None = None) -> tuple[SweepSpec, int | None]:
     """The config structure (see the module doc) to (spec, chunk_size or None)."""
+    fail = failer(source)
+    _check_keys(data, TOP_KEYS, "", fail)
+    scene, axes, cases, chunk = parts(data, fail, base_dir, axes_required=True)
+    try:
+        spec = SweepSpec(scene, axes=None if cases is not None else axes, cases=cases)
+    except (ValueError, TypeError) as err:
+        where = "sweep.cases" if cases is not None else _named_key("axes", err, axes)
+        raise fail(where, str(err)) from None
+    return spec, chunk
+
+
+def failer(source: str) -> Any:
+    """The error factory of one config: ``fail(key, msg)`` -> a one-line :class:`ConfigError`."""
     def fail(key: str, msg: str) -> ConfigError:
         msg = " ".join(msg.split())  # one line, whatever the wrapped error looked like
         return ConfigError(f"{source}: {key}: {msg}" if key else f"{source}: {msg}")
 
-    _check_keys(data, TOP_KEYS, "", fail)
+    return fail
+
+
+def parts(data: Mapping[str, Any], fail: Any, base_dir: Path | None, *,
+          axes_required: bool) -> tuple[Scene, dict[str, Any], pl.DataFrame | None, int | None]:
+    """The [scene], [axes] and [sweep] tables: (scene, axes, cases table or None, chunk size or None)."""
     scene = _scene(_table(data, "scene", fail), fail)
     sweep_t = _table(data, "sweep", fail)
     _check_keys(sweep_t, SWEEP_KEYS, "sweep", fail)
@@ -98,18 +116,13 @@ def spec_from_dict(data: Mapping[str, Any], *, source: str = "config",
         if axes_t:
             raise fail("sweep.cases", "give either [axes] or sweep.cases, not both")
         cases = _read_cases(sweep_t["cases"], base_dir, fail)
-    elif not axes_t:
+    elif not axes_t and axes_required:
         raise fail("axes", f"require an [axes] table (with theta_deg) or sweep.cases; axes: {', '.join(AXES)}")
     for name in axes_t:
         if name not in AXES:
             raise fail(f"axes.{name}", f"unknown axis{_suggest(name, AXES)}; allowed: {', '.join(AXES)}")
     axes = {name: _axis_values(name, value, fail) for name, value in axes_t.items()}
-    try:
-        spec = SweepSpec(scene, axes=None if cases is not None else axes, cases=cases)
-    except (ValueError, TypeError) as err:
-        where = "sweep.cases" if cases is not None else _named_key("axes", err, axes)
-        raise fail(where, str(err)) from None
-    return spec, chunk
+    return scene, axes, cases, chunk
 
 
 def _named_key(table: str, err: Exception, keys: Mapping[str, Any]) -> str:

@@ -33,7 +33,6 @@ import polars as pl
 
 from .._core import __version__ as ENGINE_VERSION
 from ._progress import Progress, StopOnInterrupt, want_progress
-from .config import spec_to_dict
 from ..scene import Scene
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
@@ -226,7 +225,7 @@ def _run_pending(spec: SweepSpec, pending: list[Chunk], scheduler: Any, n_thread
 
 def make_manifest(spec: SweepSpec, chunk_size: int) -> dict[str, Any]:
     """The manifest of ``spec`` cut in chunks of ``chunk_size`` (``created`` aside, a pure function)."""
-    body = spec_to_dict(spec, chunk_size, CASES_FILE if spec.cases is not None else None)
+    body = spec.to_dict(chunk_size, CASES_FILE if spec.cases is not None else None)
     digest = hashlib.sha256()
     digest.update(json.dumps(body, sort_keys=True).encode())
     digest.update(json.dumps(list(spec.axis_names)).encode())

@@ -63,6 +63,9 @@ class SweepSpec:
         One impact per row; its columns must be axis names, ``theta_deg`` among them.
     """
 
+    #: Whether ``theta_deg`` must be an axis (an ensemble may draw it instead).
+    _needs_theta = True
+
     def __init__(self, scene: Scene, *, axes: Mapping[str, Any] | None = None,
                  cases: pl.DataFrame | None = None) -> None:
         if not isinstance(scene, Scene):
@@ -78,7 +81,7 @@ class SweepSpec:
             self._init_axes(dict(axes or {}))
 
     def _init_axes(self, axes: dict[str, Any]) -> None:
-        if "theta_deg" not in axes:
+        if "theta_deg" not in axes and self._needs_theta:
             raise ValueError("`theta_deg` is required (a scalar or a 1-D array in (0, 90])")
         self.axes = {name: axis_values(name, values, self.scene) for name, values in axes.items()}
         lens = [len(a) for a in self.axes.values()]
@@ -118,7 +121,7 @@ class SweepSpec:
         unknown = [c for c in cases.columns if c not in AXES]
         if unknown:
             raise ValueError(f"`cases` has columns that are not axes: {unknown}; allowed: {', '.join(AXES)}")
-        if "theta_deg" not in cases.columns:
+        if "theta_deg" not in cases.columns and self._needs_theta:
             raise ValueError("`cases` needs a `theta_deg` column")
         if cases.height == 0:
             raise ValueError("require `cases` with at least one row")
@@ -129,9 +132,18 @@ class SweepSpec:
             for name in cases.columns
         }
         self.n_cases = cases.height
+        self._check_cases()
+
+    def _check_cases(self) -> None:
         if self.n_cases <= _CHECK_MAX:  # beyond, each chunk is checked as it runs
             _engine.check(_engine.columns(self.scene.engine_values(), self._case_cols, self.n_cases),
                           self.scene.template_vertices())
+
+    def to_dict(self, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
+        """The spec in the config structure, fully expanded (what a dataset's manifest stores)."""
+        from .config import spec_to_dict  # config builds specs: imported here, not at the top
+
+        return spec_to_dict(self, chunk_size, cases_file)
 
     @property
     def axis_names(self) -> tuple[str, ...]:
@@ -288,7 +300,13 @@ def sweep(
     >>> df.select("theta_deg", "mu").rows()
     [(30.0, 0.0), (30.0, 1.0), (60.0, 0.0), (60.0, 1.0)]
     """
-    spec = SweepSpec(scene, axes=axes, cases=cases)
+    return run_in_memory(SweepSpec(scene, axes=axes, cases=cases), threads=threads, progress=progress,
+                         chunk_size=chunk_size)
+
+
+def run_in_memory(spec: SweepSpec, *, threads: int | None = None, progress: bool | None = None,
+                  chunk_size: int | None = None) -> pl.DataFrame:
+    """Runs every case of ``spec`` chunk by chunk (progress between chunks) into one frame."""
     n_threads = check_threads(threads)
     size = check_chunk_size(chunk_size if chunk_size is not None else DEFAULT_CHUNK)
     bar = Progress(spec.n_cases, enabled=want_progress(progress, spec.n_cases))

@@ -34,6 +34,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -340,5 +341,120 @@ def e_n_for_theta_c(theta_c_deg: float, mu: float, *, kappa: float | str = DISC)
     return k / ((1.0 + k) * mu * np.tan(np.radians(theta_c_deg))) - 1.0
 
 
-__all__ = ["DISC", "SPHERE", "beta", "e_kin", "e_kin_min", "e_n_for_theta_c", "e_t", "e_t_rolling", "e_t_sliding",
-           "omega_out", "regime_boundaries", "slides", "theta_c", "vx_out"]
+# --------------------------------------------------------------------------------------------
+# Beyond the disc's rigid-body theory: the limits ensembles are checked against (model, 16.5-16.6)
+# --------------------------------------------------------------------------------------------
+
+
+def kappa_polygon(n: int) -> float:
+    """I / (m r^2) of a regular n-gon of circumradius r: (1 + 2 cos^2(pi / n)) / 6.
+
+    >>> round(kappa_polygon(4), 12), round(kappa_polygon(10**6), 9)   # a square: m a^2 / 6, a = r sqrt 2; a disc
+    (0.333333333333, 0.5)
+    """
+    return (1.0 + 2.0 * math.cos(math.pi / n) ** 2) / 6.0
+
+
+def polygon_impact(n: int, phi0_deg: ArrayLike, theta_deg: float, omega_in: float = 0.0, *, v: float = V_PAPER,
+                   r: float = R_PAPER, e: float = 1.0) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Rigid-body impact of a frictionless regular n-gon on the plate: (vx', vy', omega', impulses)
+    for each orientation ``phi0_deg`` at first touch (docs/model.md, section 16.5).
+
+    Each contact is a corner at rho = (rho_x, rho_y) from the centre receiving a normal impulse
+    P with Newton's restitution ``e`` of the corner's normal velocity u_n = v_y + omega rho_x:
+    ``P = -(1 + e) m u_n / (1 + m rho_x^2 / I)``, v_y += P / m, omega += rho_x P / I; v_x is
+    unchanged (no friction). The body then flies freely until another corner reaches the plate,
+    which takes its impulse in turn, until no corner can reach the plate again (the engine's
+    rule: v_y > 0 and either y >= r or v_y > r |omega|). With e = 1 the kinetic energy is conserved.
+
+    A face landing flat (two corners at once) is taken corner after corner, the sequence a
+    soft contact approaches only if the first corner's contact ends before the second begins;
+    such orientations are a set of measure zero under a uniform draw.
+
+    >>> vx, vy, w, k = polygon_impact(4, 0.0, 90.0, v=1.0, r=1.0)    # a corner right below the centre
+    >>> float(vy[0]), abs(round(float(w[0]), 12)), int(k[0])
+    (1.0, 0.0, 1)
+    """
+    phis = np.atleast_1d(np.asarray(phi0_deg, dtype=float))
+    out = np.array([_polygon_one(n, float(p), theta_deg, omega_in, v, r, e) for p in phis])
+    return out[:, 0], out[:, 1], out[:, 2], out[:, 3].astype(np.int64)
+
+
+def _polygon_one(n: int, phi0_deg: float, theta_deg: float, omega: float, v: float, r: float,
+                 e: float) -> tuple[float, float, float, float]:
+    inertia = kappa_polygon(n) * r * r  # per unit mass
+    alpha = np.radians(phi0_deg + 360.0 * np.arange(n) / n)
+    th = np.radians(theta_deg)
+    vx, vy = v * (0.0 if theta_deg == 90.0 else np.cos(th)), -v * np.sin(th)
+    y, phi = -r * float(np.min(np.sin(alpha))), 0.0
+    corner, impulses = int(np.argmin(np.sin(alpha))), 0
+    for _ in range(10_000):
+        rho_x = r * np.cos(alpha[corner] + phi)
+        u_n = vy + omega * rho_x
+        if u_n < 0.0:
+            impulse = -(1.0 + e) * u_n / (1.0 + rho_x * rho_x / inertia)
+            vy, omega, impulses = vy + impulse, omega + rho_x * impulse / inertia, impulses + 1
+        if vy > 0.0 and (y >= r or vy > r * abs(omega)):
+            break
+        hit = _next_touch(alpha, y, phi, vy, omega, r)
+        if hit is None:
+            break
+        dt, corner = hit
+        y, phi = y + vy * dt, phi + omega * dt
+    return vx, vy, omega, float(impulses)
+
+
+def _next_touch(alpha: np.ndarray, y: float, phi: float, vy: float, omega: float,
+                r: float) -> tuple[float, int] | None:
+    """(time, corner) of the next corner to reach the plate in free flight, or None: corners
+    scanned on a grid of at least 2000 steps and 100 per radian turned, the crossing bisected."""
+    horizon = (r - y) / vy if vy > 0.0 else (y / -vy if vy < 0.0 else 2.0 * np.pi / abs(omega))
+    steps = int(min(max(2000, 100 * abs(omega) * horizon), 400_000))
+    t = np.linspace(0.0, horizon * (1.0 + 1e-9), steps + 1)[1:]
+    height = y + vy * t[:, None] + r * np.sin(alpha[None, :] + phi + omega * t[:, None])
+    below = (height < 0.0).any(axis=1)
+    if not below.any():
+        return None
+    i = int(np.argmax(below))
+    corner = int(np.argmin(height[i]))
+    lo, hi = (t[i - 1] if i > 0 else 0.0), t[i]
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        if y + vy * mid + r * np.sin(alpha[corner] + phi + omega * mid) < 0.0:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi), corner
+
+
+#: 1 - e_N = C eps + O(eps^2) for a viscoelastic force k d^1.5 + (3/2) k A d^0.5 d', with
+#: C = (6/5) (5/4)^(3/5) B(3/5, 3/2) (docs/model.md, section 16.6).
+VISCOELASTIC_C = 1.2 * 1.25**0.6 * math.gamma(0.6) * math.gamma(1.5) / math.gamma(2.1)
+
+
+def viscoelastic_epsilon(v_n: ArrayLike, *, gamma: float, E: float, rho: float, r: float) -> np.ndarray:
+    """The dimensionless damping of the area law on an exact disc at normal speed ``v_n`` (m/s):
+    eps = A (k / m)^(2/5) v_n^(1/5), with the small-overlap force k d^1.5 + (3/2) k A d^0.5 d',
+    k = (E / 3) sqrt(2 / r), A = gamma sqrt(m / E), m = rho pi r^2 (docs/model.md, section 16.6).
+
+    >>> round(float(viscoelastic_epsilon(0.0357, gamma=0.33, E=1e7, rho=2500.0, r=0.01)), 4)
+    0.0614
+    """
+    m = rho * math.pi * r * r
+    k = E / 3.0 * math.sqrt(2.0 / r)
+    return gamma * math.sqrt(m / E) * (k / m) ** 0.4 * np.asarray(v_n, dtype=float) ** 0.2
+
+
+def e_n_viscoelastic(v_n: ArrayLike, *, gamma: float, E: float, rho: float, r: float) -> np.ndarray:
+    """First-order normal restitution of the area law on an exact disc, 1 - C eps, valid for
+    small eps and small depth / r (docs/model.md, section 16.6): 1 - e_N grows as v_n^(1/5).
+
+    >>> round(float(e_n_viscoelastic(1e-3, gamma=0.01, E=1e7, rho=2500.0, r=0.01)), 5)
+    0.99843
+    """
+    return 1.0 - VISCOELASTIC_C * viscoelastic_epsilon(v_n, gamma=gamma, E=E, rho=rho, r=r)
+
+
+__all__ = ["DISC", "SPHERE", "VISCOELASTIC_C", "beta", "e_kin", "e_kin_min", "e_n_for_theta_c", "e_n_viscoelastic",
+           "e_t", "e_t_rolling", "e_t_sliding", "kappa_polygon", "omega_out", "polygon_impact", "regime_boundaries",
+           "slides", "theta_c", "viscoelastic_epsilon", "vx_out"]
