@@ -149,7 +149,8 @@ impl Reference<'_> {
     }
 
     /// Positive when a sticking spring would stay inside the Coulomb cone: the value
-    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates along the motion of the slipping
+    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt) (plus Mindlin's drift,
+    /// [`crate::model::Model::elastic_drift`]), both rates along the motion of the slipping
     /// body: in closed form on the exact disc (area or linear law, linear spring), by central
     /// differences elsewhere.
     fn slip_to_stick(&self, m: &Mode, s: &State, eval: impl FnOnce() -> (State, Eval)) -> f64 {
@@ -165,14 +166,22 @@ impl Reference<'_> {
             Some(rates) => rates,
             None => self.differenced_rates(m, s, &d, &e),
         };
-        let (k_xi, rate, _) = self.model.spring(e.depth);
+        let (k_xi, rate, ct) = self.model.spring(e.depth);
         // Located where the value exceeds 1e-9 of its terms, the switch is robustly past its
         // root (central differences carry ~1e-11 of the terms, the closed form round-off), and
         // late by only that fraction of the value's rise time: a switch located where the
         // value is noise leaves a spring on the cone that does not move inside, and stick and
         // slip chatter at once (the disc at theta 84, mu 0.8 lost a stick phase of 0.004 t_c
         // that way, e_T off by 1e-5 at tol 1e-6).
-        let terms = [self.mu * dfn, sg * k_xi * rate * e.v_t, sg * ddamp];
+        // Mindlin's elastic force -k_xi xi also drifts with the depth where its history is
+        // the displacement or rescaled: k_xi xi = -(F_t + c_t v_t) in slip (zero otherwise).
+        let drift = self.model.elastic_drift(e.depth, -s[VY]) * (e.forces.f_t + ct * e.v_t);
+        let terms = [
+            self.mu * dfn,
+            sg * k_xi * rate * e.v_t,
+            sg * ddamp,
+            -sg * drift,
+        ];
         let noise = STICK_MARGIN * terms.iter().map(|t| t.abs()).sum::<f64>();
         terms.iter().sum::<f64>() - noise
     }
