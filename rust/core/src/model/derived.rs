@@ -330,11 +330,12 @@ impl Model {
 
     /// The rate lambda at which the `mindlin_rescale` variants shrink their history xi while
     /// the contact unloads: the continuous form of xi <- xi a / a_prev with a = sqrt(R delta),
-    /// lambda = min(0, d(delta)/dt) / (2 delta), added to d(xi)/dt as lambda xi while sticking.
-    /// 0 for the other histories (and out of contact).
+    /// lambda = d(ln a)/dt = d(delta)/dt / (2 delta), added to d(xi)/dt as lambda xi while
+    /// sticking. Applied only from the deepest point on (the fixed steps compare the depths,
+    /// the adaptive path switches its mode there); 0 for the other histories and out of contact.
     #[inline(always)]
     pub fn history_shrink(&self, depth: f64, depth_rate: f64) -> f64 {
-        if self.history.rescales() && depth > 0.0 && depth_rate < 0.0 {
+        if self.history.rescales() && depth > 0.0 {
             0.5 * depth_rate / depth
         } else {
             0.0
@@ -343,11 +344,16 @@ impl Model {
 
     /// The relative rate at which the elastic force -k_xi xi of a sticking spring changes
     /// besides the contact point's motion: d(k_xi xi)/dt = k_xi rate v_t + kappa k_xi xi, with
-    /// kappa the history's shrink ([`Model::history_shrink`]) plus, for a history kept as the
-    /// displacement, the stiffness's own growth d(ln k_t)/dt = d(delta)/dt / (2 delta).
+    /// kappa the history's shrink ([`Model::history_shrink`], if `unloading`) plus, for a
+    /// history kept as the displacement, the stiffness's own growth d(ln k_t)/dt =
+    /// d(delta)/dt / (2 delta).
     #[inline(always)]
-    pub fn elastic_drift(&self, depth: f64, depth_rate: f64) -> f64 {
-        let shrink = self.history_shrink(depth, depth_rate);
+    pub fn elastic_drift(&self, depth: f64, depth_rate: f64, unloading: bool) -> f64 {
+        let shrink = if unloading {
+            self.history_shrink(depth, depth_rate)
+        } else {
+            0.0
+        };
         if self.mindlin && !self.history.in_force() && depth > 0.0 {
             shrink + 0.5 * depth_rate / depth
         } else {

@@ -51,6 +51,9 @@ impl Reference<'_> {
                 Tan::Slip(_) => push(Event::ToStick),
                 Tan::None | Tan::Free => {}
             }
+            if !m.unloading && self.model.history.rescales() {
+                push(Event::Unload);
+            }
         }
         out.into_iter().flatten()
     }
@@ -108,6 +111,8 @@ impl Reference<'_> {
                 self.to_slip_value(&eval().1)
             }
             (Event::ToStick, _) => self.slip_to_stick(m, s, eval),
+            // The sphere's depth r - y grows while v_y < 0.
+            (Event::Unload, _) => s[VY],
             _ => f64::NEG_INFINITY,
         }
     }
@@ -175,7 +180,8 @@ impl Reference<'_> {
         // that way, e_T off by 1e-5 at tol 1e-6).
         // Mindlin's elastic force -k_xi xi also drifts with the depth where its history is
         // the displacement or rescaled: k_xi xi = -(F_t + c_t v_t) in slip (zero otherwise).
-        let drift = self.model.elastic_drift(e.depth, -s[VY]) * (e.forces.f_t + ct * e.v_t);
+        let drift =
+            self.model.elastic_drift(e.depth, -s[VY], m.unloading) * (e.forces.f_t + ct * e.v_t);
         let terms = [
             self.mu * dfn,
             sg * k_xi * rate * e.v_t,
@@ -235,7 +241,7 @@ impl Reference<'_> {
     pub(super) fn value_at(&self, m: &Mode, ev: Event, step: &Step, th: f64) -> f64 {
         let geometric = !matches!(
             ev,
-            Event::ClipOff | Event::ClipOn | Event::ToSlip | Event::ToStick
+            Event::ClipOff | Event::ClipOn | Event::ToSlip | Event::ToStick | Event::Unload
         );
         if geometric {
             let mut s = step.y0;
@@ -362,6 +368,7 @@ mod tests {
                         clip_on: true,
                         clip_hold: false,
                         tan: Tan::Slip(sg),
+                        unloading: false,
                     };
                     let (d, e) = ode.eval(&m, &s);
                     let closed = ode.disc_rates(&s, &d, &e).unwrap();

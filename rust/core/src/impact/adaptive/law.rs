@@ -222,11 +222,12 @@ impl<'a> Reference<'a> {
         d[VX] = f_t * self.inv_mass;
         d[VY] = f_n * self.inv_mass;
         d[OM] = forces.torque * self.inv_inertia;
-        // The rescaled histories also shrink as the contact unloads (zero for the others).
-        d[XI] = if m.tan == Tan::Stick {
-            rate * v_t + model.history_shrink(o.depth, -s[VY]) * s[XI]
-        } else {
-            0.0
+        // A rescaled history also shrinks once the contact unloads (its mode says when).
+        let shrink = || model.history_shrink(o.depth, -s[VY]) * s[XI];
+        d[XI] = match m.tan {
+            Tan::Stick if m.unloading => rate * v_t + shrink(),
+            Tan::Stick => rate * v_t,
+            _ => 0.0,
         };
         (d[W_EL], d[W_D], d[W_T]) = forces.powers(s[Y], &v);
         let e = Eval {
