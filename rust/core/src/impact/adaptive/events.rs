@@ -180,8 +180,12 @@ impl Reference<'_> {
         // that way, e_T off by 1e-5 at tol 1e-6).
         // Mindlin's elastic force -k_xi xi also drifts with the depth where its history is
         // the displacement or rescaled: k_xi xi = -(F_t + c_t v_t) in slip (zero otherwise).
-        let drift =
-            self.model.elastic_drift(e.depth, -s[VY], m.unloading) * (e.forces.f_t + ct * e.v_t);
+        let drift = if self.model.mindlin {
+            let elastic = e.forces.f_t + ct * e.v_t;
+            self.model.elastic_drift(e.depth, -s[VY], m.unloading) * elastic
+        } else {
+            0.0
+        };
         let terms = [
             self.mu * dfn,
             sg * k_xi * rate * e.v_t,
