@@ -5,6 +5,7 @@ the gross-sliding branch (Test 4), refusals, sweeps and the validate pipeline.""
 import math
 
 import numpy as np
+import polars as pl
 import pytest
 
 import restitution as rs
@@ -70,6 +71,50 @@ def test_mindlin_needs_hertz():
     assert err.value.parameter == "tangential"
 
 
+@pytest.mark.parametrize("history", ["mindlin", "mindlin/force", "mindlin_rescale", "mindlin_rescale/force"])
+def test_a_tangential_history_needs_mindlins_spring(history):
+    assert alumina(tangential_history=history).tangential_history == history
+    for scene in (dict(shape=rs.Disc(r=0.01), normal_law="area", nu=None, cor=None),
+                  dict(tangential="linear", kt=1e8)):
+        with pytest.raises(rs.RestitutionError) as err:
+            alumina(tangential_history=history, **scene)
+        assert err.value.parameter == "tangential_history"
+    with pytest.raises(rs.RestitutionError, match="tangential_history"):
+        alumina(tangential_history="mindlin/displacement")
+
+
+def test_tangential_history_is_a_sweep_axis():
+    """Near the normal the contact sticks and the histories differ; beyond 35 deg from it the contact
+    slides throughout and the force histories agree to round-off (rigid-body theory)."""
+    df = rs.sweep(alumina(), theta_deg=[85.0, 40.0], tangential_history=list(validate.HISTORIES), progress=False)
+    assert df["tangential_history"].to_list() == list(validate.HISTORIES) * 2  # the first axis slowest
+    near, sliding = df.filter(pl.col("theta_deg") == 85.0), df.filter(pl.col("theta_deg") == 40.0)
+    assert near["e_t"].n_unique() == 4
+    forces = sliding.filter(pl.col("tangential_history").str.ends_with("/force"))["e_t"].to_numpy()
+    assert forces[0] == pytest.approx(forces[1], abs=1e-12)
+
+
+def test_auto_is_mindlin_force():
+    for theta in (85.0, 70.0, 40.0):
+        assert rs.simulate(alumina(), theta) == rs.simulate(alumina(tangential_history="mindlin/force"), theta)
+
+
+def test_history_verdict_against_test4():
+    """Each history against Chung & Ooi's Test 4: the table has every published point inside our range
+    for every history, the default is its own reference (never closer, never farther), and the verdict
+    is what the points say."""
+    dev = validate.history_deviations(validate.test4_histories())
+    verdict = validate.history_verdict(dev)
+    assert set(verdict["history"]) == set(validate.HISTORIES)
+    inside = sum(int(np.sum((np.asarray(table[case][0]) >= 5.0) & (np.asarray(table[case][0]) <= 85.0)))
+                 for _, table in validate.QUANTITIES for case in ("oxide", "alloy") if case in table)
+    assert dev.group_by("history").len()["len"].to_list() == [inside] * 4
+    default = verdict.filter(pl.col("history") == validate.DEFAULT_HISTORY).row(0, named=True)
+    assert (default["points_closer"], default["points_farther"]) == (0, 0)
+    for row in verdict.iter_rows(named=True):
+        assert row["better_everywhere"] == (row["points_farther"] == 0 and row["points_closer"] > 0)
+
+
 def test_sweep_over_cor_and_angle():
     df = rs.sweep(alumina(mu=0.0), theta_deg=[30.0, 90.0], cor=[0.3, 0.9], progress=False)
     assert df.height == 4
@@ -88,4 +133,5 @@ def test_elastic_plate_softens_the_contact():
 def test_validate_writes_figures(tmp_path):
     paths = validate.write_validation(tmp_path)
     names = {p.name for p in paths}
-    assert {"test4.png", "kharaz.png", "test6.png", "report.md"} <= names
+    assert {"test4.png", "kharaz.png", "test6.png", "test4_histories.png", "report.md"} <= names
+    assert "Test 4 per history of Mindlin's spring" in (tmp_path / "report.md").read_text()

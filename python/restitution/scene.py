@@ -18,6 +18,10 @@ OVERLAPS = _engine.CHOICES["overlap"]
 #: Tangential laws: what the normal law implies ("mindlin" for "hertz", else "linear"), the
 #: Cundall-Strack spring, or Mindlin-Deresiewicz (Hertz law only).
 TANGENTIALS = _engine.CHOICES["tangential"]
+#: How Mindlin's spring keeps its history (LAMMPS's names): "auto" ("mindlin/force"), as the
+#: displacement ("mindlin") or the elastic force ("mindlin/force"), each also rescaled with the
+#: contact radius as the contact unloads ("mindlin_rescale", "mindlin_rescale/force").
+TANGENTIAL_HISTORIES = _engine.CHOICES["tangential_history"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -89,6 +93,12 @@ class Scene:
     """"auto" ("mindlin" for the Hertz law, else "linear"), "linear" (Cundall-Strack spring ``kt``,
     damping ``gamma_t``; with the Hertz law ``kt`` in N/m is required) or "mindlin"
     (k_t = 8 G* sqrt(R delta), incremental, capped at mu F_n, damped like the normal law)."""
+    tangential_history: str = "auto"
+    """How Mindlin's spring keeps its history, as LAMMPS's ``pair granular`` names it (docs/model.md,
+    section 14.8): "auto" (= "mindlin/force": the elastic force, incremented by -k_t v_t dt),
+    "mindlin" (the displacement xi, force -k_t(delta) xi), "mindlin_rescale" and
+    "mindlin_rescale/force" (the same, shrunk by a / a_prev as the contact radius a falls).
+    Anything but "auto" requires Mindlin's spring (the Hertz law)."""
     overlap: str = "auto"
     """Overlap with the plate: "auto" (closed-form segment for a disc, half-plane clip for a
     polygon), "halfplane", or "parry" (general convex-convex intersection; polygons only)."""

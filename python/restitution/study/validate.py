@@ -4,8 +4,10 @@ and Kharaz, Gorham & Salman's (2001) experiments (docs/model.md, section 14).
 Runs Tests 2, 3, 4 and 6 of the benchmark with its published inputs, and Test 4's alumina on
 the glass anvil of the experiments; writes one Parquet table per test, the benchmark's figures
 with the published curves (:mod:`restitution.study.published`) and rigid-body theory
-(kappa = 2/5) overlaid, and ``report.md`` with the deviations. Nothing is fitted to the
-published curves.
+(kappa = 2/5) overlaid, and ``report.md`` with the deviations. Test 4 runs once more per
+history of Mindlin's spring (``tangential_history``, LAMMPS's variants; docs/model.md, 14.8),
+with the deviation at each published angle and the verdict on the default. Nothing is fitted
+to the published curves.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ import polars as pl
 
 from . import theory
 from ..runs.sweep import sweep
-from ..scene import Scene
+from ..scene import TANGENTIAL_HISTORIES, Scene
 from ..shapes import Sphere
 from ..simulate import simulate
 from . import published
@@ -40,6 +42,15 @@ GLASS = (70e9, 0.25)
 ANGLES = np.arange(5.0, 86.0, 5.0)
 #: Contact time of an elastic Hertz impact in units of delta_max / v: (4/5) B(2/5, 1/2).
 HERTZ_TIME = 0.8 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
+#: The histories of Mindlin's spring compared on Test 4 ("auto" is the default, "mindlin/force").
+HISTORIES = tuple(h for h in TANGENTIAL_HISTORIES if h != "auto")
+DEFAULT_HISTORY = "mindlin/force"
+#: Test 4's published quantities: (our column, the digitised curves).
+QUANTITIES = (("e_t", published.TEST4_E_T), ("omega_out", published.TEST4_OMEGA),
+              ("rebound_angle_deg", published.TEST4_REBOUND_ANGLE))
+#: A tenth of what the digitised curves resolve (published.py: +-0.01 in e_t, +-10 rad/s, +-1 deg):
+#: two deviations closer than this count as equal in the verdict on the histories.
+RESOLUTION = {"e_t": 1e-3, "omega_out": 1.0, "rebound_angle_deg": 0.1}
 
 
 def sphere_scene(material: str, r: float, cor: float, mu: float, plate: tuple[float, float] | None = None,
@@ -104,13 +115,25 @@ def oblique(scene: Scene, label: str) -> pl.DataFrame:
     )
 
 
+def test4_scene(material: str, plate: tuple[float, float] | None = None, **changes: Any) -> Scene:
+    """Test 4's sphere: 3.9 m/s, cor 0.98, mu 0.092, R = 2.5 mm (rigid plane unless ``plate``)."""
+    return sphere_scene(material, 2.5e-3, 0.98, 0.092, plate=plate, v=3.9, **changes)
+
+
 def test4() -> pl.DataFrame:
-    """Test 4 (3.9 m/s, cor 0.98, mu 0.092, R = 2.5 mm, rigid plane) for alumina and Al alloy, and
-    the Kharaz run: alumina on the glass anvil (E 70 GPa, nu 0.25)."""
-    runs = [("oxide", sphere_scene("alumina", 2.5e-3, 0.98, 0.092, v=3.9)),
-            ("alloy", sphere_scene("Al alloy", 2.5e-3, 0.98, 0.092, v=3.9)),
-            ("kharaz", sphere_scene("alumina", 2.5e-3, 0.98, 0.092, plate=GLASS, v=3.9))]
+    """Test 4 for alumina and Al alloy, and the Kharaz run: alumina on the glass anvil (E 70 GPa,
+    nu 0.25)."""
+    runs = [("oxide", test4_scene("alumina")), ("alloy", test4_scene("Al alloy")),
+            ("kharaz", test4_scene("alumina", plate=GLASS))]
     return pl.concat([oblique(scene, label) for label, scene in runs])
+
+
+def test4_histories() -> pl.DataFrame:
+    """Test 4 (alumina and Al alloy) once per history of Mindlin's spring (:data:`HISTORIES`): the
+    frame of :func:`oblique` with a ``history`` column."""
+    return pl.concat([oblique(test4_scene(material, tangential_history=history), label)
+                      .with_columns(pl.lit(history).alias("history"))
+                      for history in HISTORIES for label, material in (("oxide", "alumina"), ("alloy", "Al alloy"))])
 
 
 def test6() -> pl.DataFrame:
@@ -129,12 +152,20 @@ def test6() -> pl.DataFrame:
     return pl.concat(frames)
 
 
-def _deviation(ours_x: np.ndarray, ours_y: np.ndarray, curve: tuple[tuple[float, ...], ...]) -> float:
-    """Largest |ours - published| at the published abscissae inside our range (linear interpolation)."""
+def _at_published(ours_x: np.ndarray, ours_y: np.ndarray,
+                  curve: tuple[tuple[float, ...], ...]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(the published abscissae inside our range, the published values there, ours there by linear
+    interpolation)."""
     x, y = (np.asarray(c, dtype=float) for c in curve)
     order = np.argsort(ours_x)
     inside = (x >= ours_x.min()) & (x <= ours_x.max())
-    return float(np.max(np.abs(np.interp(x[inside], ours_x[order], ours_y[order]) - y[inside])))
+    return x[inside], y[inside], np.interp(x[inside], ours_x[order], ours_y[order])
+
+
+def _deviation(ours_x: np.ndarray, ours_y: np.ndarray, curve: tuple[tuple[float, ...], ...]) -> float:
+    """Largest |ours - published| at the published abscissae inside our range (linear interpolation)."""
+    _, y, ours = _at_published(ours_x, ours_y, curve)
+    return float(np.max(np.abs(ours - y)))
 
 
 def deviations(t4: pl.DataFrame, t6: pl.DataFrame) -> pl.DataFrame:
@@ -156,6 +187,39 @@ def deviations(t4: pl.DataFrame, t6: pl.DataFrame) -> pl.DataFrame:
                      "max_abs_deviation": _deviation(sub["x"].to_numpy(), sub["beta"].to_numpy(),
                                                      published.TEST6_BETA[case])})
     return pl.DataFrame(rows)
+
+
+def history_deviations(t4h: pl.DataFrame) -> pl.DataFrame:
+    """Each history's deviation from Chung & Ooi's DEM curves at each published angle (Test 4)."""
+    rows = []
+    for (history, case), sub in t4h.group_by("history", "case", maintain_order=True):
+        for q, table in QUANTITIES:
+            if case in table:
+                x, y, ours = _at_published(sub["incidence_deg"].to_numpy(), sub[q].to_numpy(), table[case])
+                rows += [{"history": history, "case": case, "quantity": q, "incidence_deg": a,
+                          "published": p, "ours": o, "deviation": o - p} for a, p, o in zip(x, y, ours)]
+    return pl.DataFrame(rows)
+
+
+def history_verdict(dev: pl.DataFrame) -> pl.DataFrame:
+    """Each history against the default at every published point (both materials, e_t, spin and
+    rebound angle): how many points it is closer to the published curve by more than
+    :data:`RESOLUTION`, how many farther, its largest e_t deviation at 5-10 deg and overall, and
+    whether it is better everywhere (farther nowhere, closer somewhere)."""
+    base = dev.filter(pl.col("history") == DEFAULT_HISTORY).select(
+        "case", "quantity", "incidence_deg", pl.col("deviation").abs().alias("default"))
+    resolution = pl.col("quantity").replace_strict(RESOLUTION, return_dtype=pl.Float64)
+    gap = pl.col("deviation").abs() - pl.col("default")
+    e_t = pl.col("quantity") == "e_t"
+    near_normal = e_t & (pl.col("incidence_deg") < 12.5)
+    return dev.join(base, on=["case", "quantity", "incidence_deg"]).group_by("history", maintain_order=True).agg(
+        (gap < -resolution).sum().alias("points_closer"),
+        (gap > resolution).sum().alias("points_farther"),
+        pl.col("deviation").filter(near_normal).abs().max().alias("e_t_5_10_deg"),
+        pl.col("deviation").filter(e_t).abs().max().alias("e_t_max"),
+        pl.col("deviation").filter(pl.col("quantity") == "omega_out").abs().max().alias("spin_max"),
+        pl.col("deviation").filter(pl.col("quantity") == "rebound_angle_deg").abs().max().alias("angle_max"),
+    ).with_columns(((pl.col("points_farther") == 0) & (pl.col("points_closer") > 0)).alias("better_everywhere"))
 
 
 PUBLISHED_STYLE: dict[str, Any] = dict(ls="none", marker="s", ms=4, mfc="none")
@@ -222,6 +286,28 @@ def figure_test4(t4: pl.DataFrame, cases: tuple[str, ...], path: Path, title: st
     _save(fig, path)
 
 
+def figure_test4_histories(t4h: pl.DataFrame, path: Path) -> None:
+    """Test 4 once per history of Mindlin's spring: e_t, rebound spin and rebound angle against
+    the incident angle, a row per material, with Chung & Ooi's DEM curves."""
+    plt = _plt()
+    fig, axes = plt.subplots(2, 3, figsize=(14, 8), sharex=True)
+    for row, case in zip(axes, ("oxide", "alloy")):
+        for ax, (q, table), label in zip(row, QUANTITIES, ("$e_t$", r"rebound spin $\omega'$ (rad/s)",
+                                                            "contact-patch rebound angle (deg)")):
+            for history in HISTORIES:
+                sub = t4h.filter((pl.col("case") == case) & (pl.col("history") == history))
+                ax.plot(sub["incidence_deg"], sub[q], "-" if history == DEFAULT_HISTORY else "--",
+                        lw=2 if history == DEFAULT_HISTORY else 1.2, label=history)
+            if case in table:
+                ax.plot(*table[case], color="black", **PUBLISHED_STYLE, label=f"Chung & Ooi DEM: {case}")
+            ax.set(ylabel=f"{label}, {case}")
+        row[0].legend(fontsize=7)
+    for ax in axes[1]:
+        ax.set(xlabel="incident angle from the normal (deg)")
+    fig.suptitle("Test 4 per history of Mindlin's spring (tangential_history; mindlin/force is the default)")
+    _save(fig, path)
+
+
 def figure_test6(t6: pl.DataFrame, path: Path) -> None:
     """beta against 3.5 mu (1 + e) v_n / V, with the published DEM curves."""
     plt = _plt()
@@ -237,7 +323,8 @@ def figure_test6(t6: pl.DataFrame, path: Path) -> None:
     _save(fig, path)
 
 
-def report(t2: pl.DataFrame, t3: pl.DataFrame, t4: pl.DataFrame, dev: pl.DataFrame) -> str:
+def report(t2: pl.DataFrame, t3: pl.DataFrame, t4: pl.DataFrame, dev: pl.DataFrame,
+           hist_dev: pl.DataFrame, verdict: pl.DataFrame) -> str:
     """The deviations in words and tables (markdown)."""
     sliding = t4.filter((pl.col("case") != "kharaz") & (pl.col("incidence_deg") >= 35.0))
     lines = [
@@ -253,14 +340,47 @@ def report(t2: pl.DataFrame, t3: pl.DataFrame, t4: pl.DataFrame, dev: pl.DataFra
         f"{((sliding['omega_out'] / sliding['omega_theory']) - 1).abs().max():.2e}", "",
         "## Against the published curves (largest absolute deviation at their points)", "",
         _markdown(dev), "",
+        *report_histories(hist_dev, verdict),
     ]
     return "\n".join(lines)
 
 
+def report_histories(hist_dev: pl.DataFrame, verdict: pl.DataFrame) -> list[str]:
+    """Test 4 per history of Mindlin's spring: the deviation at each published angle, the summary
+    and the verdict on the default (markdown lines)."""
+    lines = ["## Test 4 per history of Mindlin's spring (tangential_history, docs/model.md 14.8)", "",
+             "Deviation from Chung & Ooi's DEM curves (ours - published) at each published angle.", ""]
+    for q, _ in QUANTITIES:
+        wide = hist_dev.filter(pl.col("quantity") == q).with_columns(
+            pl.format("{} {}", "case", "history").alias("run"), pl.col("incidence_deg").round(0)
+        ).pivot("run", index="incidence_deg", values="deviation", aggregate_function="first")
+        lines += [f"### {q}", "", _markdown(wide), ""]
+    better = verdict.filter(pl.col("better_everywhere"))["history"].to_list()
+    decisive = hist_dev.join(hist_dev.filter(pl.col("history") == DEFAULT_HISTORY).select(
+        "case", "quantity", "incidence_deg", pl.col("deviation").alias("default_deviation")),
+        on=["case", "quantity", "incidence_deg"]).filter(
+        pl.col("deviation").abs() - pl.col("default_deviation").abs()
+        > pl.col("quantity").replace_strict(RESOLUTION, return_dtype=pl.Float64))
+    lines += ["### Verdict", "", _markdown(verdict), "",
+              f"A history is better everywhere when it is closer to the published curve than {DEFAULT_HISTORY} "
+              "(the default) at some published point and farther at none; deviations within a tenth of what the "
+              "digitisation resolves (" + ", ".join(f"{v:g} in {q}" for q, v in RESOLUTION.items())
+              + ") count as equal. e_t_5_10_deg: the largest |e_t deviation| at the published points below "
+              "12.5 deg.", ""]
+    if better:
+        lines += [f"Better everywhere: {', '.join(better)}.", ""]
+    else:
+        lines += [f"No history is better everywhere: keep {DEFAULT_HISTORY}. The points that decide it (a history "
+                  "farther from the published curve than the default):", "",
+                  _markdown(decisive.select("history", "case", "quantity", "incidence_deg", "deviation",
+                                            "default_deviation")), ""]
+    return lines
+
+
 def _markdown(df: pl.DataFrame) -> str:
     head = "| " + " | ".join(df.columns) + " |\n|" + "---|" * df.width
-    rows = ["| " + " | ".join(f"{v:.3g}" if isinstance(v, float) else str(v) for v in row) + " |"
-            for row in df.iter_rows()]
+    rows = ["| " + " | ".join(f"{v:.3g}" if isinstance(v, float) else "-" if v is None else str(v) for v in row)
+            + " |" for row in df.iter_rows()]
     return "\n".join([head, *rows])
 
 
@@ -268,10 +388,12 @@ def write_validation(out: Path) -> list[Path]:
     """Runs every test and writes tables, figures and ``report.md`` to ``out``; returns the paths."""
     out.mkdir(parents=True, exist_ok=True)
     t2, traces = test2()
-    t3, t4, t6 = test3(), test4(), test6()
-    dev = deviations(t4, t6)
+    t3, t4, t6, t4h = test3(), test4(), test6(), test4_histories()
+    dev, hist_dev = deviations(t4, t6), history_deviations(t4h)
+    verdict = history_verdict(hist_dev)
     paths = []
-    for name, df in (("test2", t2), ("test3", t3), ("test4", t4), ("test6", t6), ("deviations", dev)):
+    for name, df in (("test2", t2), ("test3", t3), ("test4", t4), ("test6", t6), ("deviations", dev),
+                     ("test4_histories", t4h), ("history_deviations", hist_dev), ("history_verdict", verdict)):
         paths.append(out / f"{name}.parquet")
         df.write_parquet(paths[-1])
     figures = (
@@ -281,10 +403,11 @@ def write_validation(out: Path) -> list[Path]:
         ("kharaz.png", lambda p: figure_test4(t4, ("kharaz",), p,
                                               "Alumina on the glass anvil (E 70 GPa, nu 0.25) vs Kharaz et al.")),
         ("test6.png", lambda p: figure_test6(t6, p)),
+        ("test4_histories.png", lambda p: figure_test4_histories(t4h, p)),
     )
     for name, draw in figures:
         paths.append(out / name)
         draw(paths[-1])
     paths.append(out / "report.md")
-    paths[-1].write_text(report(t2, t3, t4, dev))
+    paths[-1].write_text(report(t2, t3, t4, dev, hist_dev, verdict))
     return paths

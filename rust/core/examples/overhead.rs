@@ -43,6 +43,7 @@ fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
                 ("inertia", 0.0),
                 ("overlap", 0.0),
                 ("tangential", 0.0),
+                ("tangential_history", 0.0),
                 ("body", 0.0),
                 ("tol", tol),
                 ("error_estimate", 0.0),

@@ -134,6 +134,7 @@ mod tests {
             ("inertia", 0.0),
             ("overlap", 0.0),
             ("tangential", 0.0),
+            ("tangential_history", 0.0),
             ("body", 0.0),
             ("tol", 1e-6),
             ("error_estimate", 0.0),

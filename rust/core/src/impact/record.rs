@@ -222,7 +222,8 @@ pub struct Trace {
     pub depth: Vec<f64>,
     /// 0 no tangential contact, 1 stick, 2 slip.
     pub stick: Vec<u8>,
-    /// Tangential spring elongation (m).
+    /// Tangential spring elongation (m); for Mindlin's spring with its history kept as the
+    /// force (the default), minus the elastic force (N; docs/model.md, 14.8).
     pub xi: Vec<f64>,
 }
 

@@ -371,6 +371,9 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         let v_t = v[0] - v[2] * arm_y;
         let (f_t, stick) = if m.mindlin {
             let (k_xi, rate, ct) = m.spring(o.depth);
+            if m.history.rescales() {
+                self.spring.rescale(o.depth);
+            }
             self.spring
                 .step_scaled(v_t, dt, m.scene.mu, f_n, k_xi, rate, ct)
         } else {

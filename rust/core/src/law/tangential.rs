@@ -1,4 +1,5 @@
-//! Cundall-Strack tangential spring with a damper and a Coulomb cap.
+//! Cundall-Strack tangential spring with a damper and a Coulomb cap; Mindlin's spring shares
+//! it (its history as the force or the displacement, rescaled or not: docs/model.md, 14.8).
 
 /// Whether the contact point sticks or slips in a step (for the trace and slip counting).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -46,6 +47,9 @@ pub struct TangentialSpring {
     pub last: StickState,
     /// Stick to slip transitions so far.
     pub slip_events: u64,
+    /// The depth at the previous step (m; 0 before the first): what [`Self::rescale`]
+    /// compares with.
+    pub last_depth: f64,
 }
 
 impl TangentialSpring {
@@ -102,11 +106,24 @@ impl TangentialSpring {
         (f, state)
     }
 
+    /// Walton's rescaling of the history as the contact unloads (LAMMPS's `mindlin_rescale`
+    /// variants): where the depth fell since the previous step, xi shrinks with the contact
+    /// radius a = sqrt(R delta), xi <- xi a / a_prev; then the depth is remembered. Called
+    /// before [`Self::step_scaled`] adds the step's increment.
+    #[inline]
+    pub fn rescale(&mut self, depth: f64) {
+        if depth < self.last_depth {
+            self.xi *= (depth / self.last_depth).sqrt();
+        }
+        self.last_depth = depth;
+    }
+
     /// No overlap: the spring relaxes (a new contact starts unstretched).
     #[inline]
     pub fn reset(&mut self) {
         self.xi = 0.0;
         self.last = StickState::None;
+        self.last_depth = 0.0;
     }
 }
 
@@ -134,6 +151,21 @@ mod tests {
         // Staying in slip does not count again.
         s.step(100.0, dt, mu, fn_, kt, ct);
         assert_eq!(s.slip_events, 1);
+    }
+
+    #[test]
+    fn rescale_shrinks_with_the_contact_radius_on_unloading_only() {
+        let mut s = TangentialSpring::default();
+        s.rescale(4e-6);
+        s.xi = 2.0;
+        // Loading: untouched.
+        s.rescale(9e-6);
+        assert_eq!(s.xi, 2.0);
+        // Unloading to a quarter of the depth: half the contact radius, half the history.
+        s.rescale(2.25e-6);
+        assert!((s.xi - 1.0).abs() < 1e-15, "{}", s.xi);
+        s.reset();
+        assert_eq!((s.xi, s.last_depth), (0.0, 0.0));
     }
 
     #[test]

@@ -2,7 +2,9 @@
 //! case built from one row of them.
 
 use super::derived::{check_cor, poisson};
-use super::scene::{InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialModel};
+use super::scene::{
+    InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialHistory, TangentialModel,
+};
 use crate::error::{ensure_param, finite, non_negative, positive, Error, Result};
 use crate::geometry::{OverlapMethod, Shape};
 
@@ -11,7 +13,7 @@ use crate::geometry::{OverlapMethod, Shape};
 /// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
 /// Adding a parameter means a field of [`Scene`], a name here and its line in
 /// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
-pub const CASE_COLUMNS: [&str; 28] = [
+pub const CASE_COLUMNS: [&str; 29] = [
     "theta_deg",
     "omega_in",
     "v",
@@ -36,6 +38,7 @@ pub const CASE_COLUMNS: [&str; 28] = [
     "plate_nu",
     "cor",
     "tangential",
+    "tangential_history",
     "body",
     "max_steps",
     "tol",
@@ -45,12 +48,22 @@ pub const CASE_COLUMNS: [&str; 28] = [
 /// Public names of every choice, in code order: a choice column holds the index of its name.
 /// `body`: "prism" is a 2D body per unit depth (the disc or polygon the column `n` names),
 /// "sphere" a sphere of radius `r` (then `n` must be 0).
-pub const CHOICES: [(&str, &[&str]); 6] = [
+pub const CHOICES: [(&str, &[&str]); 7] = [
     ("integrator", &["gear5", "verlet", "reference", "adaptive"]),
     ("normal_law", &["area", "linear", "hertz"]),
     ("inertia", &["shape", "sphere"]),
     ("overlap", &["auto", "halfplane", "parry"]),
     ("tangential", &["auto", "linear", "mindlin"]),
+    (
+        "tangential_history",
+        &[
+            "auto",
+            "mindlin",
+            "mindlin/force",
+            "mindlin_rescale",
+            "mindlin_rescale/force",
+        ],
+    ),
     ("body", &["prism", "sphere"]),
 ];
 
@@ -173,7 +186,7 @@ pub(crate) fn scene_from_columns_with(
     vertices: Option<&[[f64; 2]]>,
     shape: Option<Shape>,
 ) -> Result<(Scene, Initial)> {
-    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, body, max_steps, tol, error_estimate] =
+    let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, tangential_history, body, max_steps, tol, error_estimate] =
         *row;
     check_theta(theta)?;
     positive("v", v)?;
@@ -229,6 +242,8 @@ pub(crate) fn scene_from_columns_with(
             TangentialModel::Linear,
             TangentialModel::Mindlin,
         ][choice("tangential", tangential)?],
+        tangential_history: TangentialHistory::ALL
+            [choice("tangential_history", tangential_history)?],
         max_steps: step_budget(max_steps)?,
         tol,
         error_estimate: flag("error_estimate", error_estimate)?,

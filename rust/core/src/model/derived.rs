@@ -2,7 +2,8 @@
 //! the Hertz law's constants) that the contact law uses, and every rule a scene must meet.
 
 use super::scene::{
-    InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialModel, MAX_RIM_SPEED,
+    InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialHistory, TangentialModel,
+    MAX_RIM_SPEED,
 };
 use crate::error::{ensure_param, finite, non_negative, positive, Result};
 use crate::geometry::Shape;
@@ -34,6 +35,9 @@ pub struct Model {
     pub hertz: Option<Hertz>,
     /// Whether the tangential spring is Mindlin's (stiffness and damping grow with the depth).
     pub mindlin: bool,
+    /// How Mindlin's spring keeps its history, `Auto` resolved (`Force`); `Auto` for the
+    /// linear spring, which has one history only.
+    pub history: TangentialHistory,
 }
 
 /// Constants of the Hertz law and the Mindlin spring of a sphere of radius R on the plate
@@ -172,6 +176,14 @@ fn check_laws(scene: &Scene) -> Result<()> {
     );
     let linear_t = scene.tangential == TangentialModel::Linear;
     ensure_param!(
+        scene.tangential_history == TangentialHistory::Auto || (hertz && !linear_t),
+        "tangential_history",
+        scene.tangential_history.name(),
+        "\"auto\" unless the tangential law is Mindlin's (normal_law \"hertz\" with tangential \
+         \"auto\" or \"mindlin\"): the variants keep the history of a stiffness that grows \
+         with the contact radius; the linear spring has one history, its elongation"
+    );
+    ensure_param!(
         !(hertz && linear_t && scene.kt.is_none() && scene.mu > 0.0),
         "kt",
         "None",
@@ -253,6 +265,10 @@ impl Model {
             }
         };
         let mindlin = hertz.is_some() && scene.tangential != TangentialModel::Linear;
+        let history = match scene.tangential_history {
+            TangentialHistory::Auto if mindlin => TangentialHistory::Force,
+            chosen => chosen,
+        };
         let t_ref = (mass / stiffness).sqrt();
         let mt = 1.0 / (1.0 / mass + r * r / inertia);
         let (kt, ct) = tangential_constants(scene, hertz.filter(|_| mindlin), stiffness, mt);
@@ -286,21 +302,66 @@ impl Model {
             area_damping,
             hertz,
             mindlin,
+            history,
         })
     }
 
     /// The tangential spring's coefficients at depth `depth` (> 0): (k_xi, rate, c_t) with the
-    /// elastic force -k_xi xi, d(xi)/dt = rate v_t and the damping -c_t v_t. The linear spring:
-    /// (k_t, 1, c_t); Mindlin's, incremental in the force: (1, k_t(delta), c_t(delta)), so
-    /// that xi is minus the elastic force (N).
+    /// elastic force -k_xi xi, d(xi)/dt = rate v_t (plus [`Model::history_shrink`] xi) and
+    /// the damping -c_t v_t. The linear spring: (k_t, 1, c_t); Mindlin's with its history as
+    /// the force (the default): (1, k_t(delta), c_t(delta)), so that xi is minus the elastic
+    /// force (N); as the displacement: (k_t(delta), 1, c_t(delta)), xi in m.
     #[inline(always)]
     pub fn spring(&self, depth: f64) -> (f64, f64, f64) {
         match self.hertz {
             Some(h) if self.mindlin => {
                 let s = depth.max(0.0).sqrt();
-                (1.0, h.kt * s, h.ct * s.sqrt())
+                let (k_t, c_t) = (h.kt * s, h.ct * s.sqrt());
+                // Selects, not a branch (0.6 % fewer instructions per sphere step). As the
+                // displacement the stiffness is never zero: the elongation that carries a
+                // force, -(F_t + c_t v_t) / k_t, stays finite (0 at touch, where F_t, c_t are).
+                let force = self.history.in_force();
+                let k_xi = if force {
+                    1.0
+                } else {
+                    k_t.max(f64::MIN_POSITIVE)
+                };
+                (k_xi, if force { k_t } else { 1.0 }, c_t)
             }
             _ => (self.kt, 1.0, self.ct),
+        }
+    }
+
+    /// The rate lambda at which the `mindlin_rescale` variants shrink their history xi while
+    /// the contact unloads: the continuous form of xi <- xi a / a_prev with a = sqrt(R delta),
+    /// lambda = d(ln a)/dt = d(delta)/dt / (2 delta), added to d(xi)/dt as lambda xi while
+    /// sticking. Applied only from the deepest point on (the fixed steps compare the depths,
+    /// the adaptive path switches its mode there); 0 for the other histories and out of contact.
+    #[inline(always)]
+    pub fn history_shrink(&self, depth: f64, depth_rate: f64) -> f64 {
+        if self.history.rescales() && depth > 0.0 {
+            0.5 * depth_rate / depth
+        } else {
+            0.0
+        }
+    }
+
+    /// The relative rate at which the elastic force -k_xi xi of a sticking spring changes
+    /// besides the contact point's motion: d(k_xi xi)/dt = k_xi rate v_t + kappa k_xi xi, with
+    /// kappa the history's shrink ([`Model::history_shrink`], if `unloading`) plus, for a
+    /// history kept as the displacement, the stiffness's own growth d(ln k_t)/dt =
+    /// d(delta)/dt / (2 delta).
+    #[inline(always)]
+    pub fn elastic_drift(&self, depth: f64, depth_rate: f64, unloading: bool) -> f64 {
+        let shrink = if unloading {
+            self.history_shrink(depth, depth_rate)
+        } else {
+            0.0
+        };
+        if self.mindlin && !self.history.in_force() && depth > 0.0 {
+            shrink + 0.5 * depth_rate / depth
+        } else {
+            shrink
         }
     }
 

@@ -12,6 +12,7 @@ pub use columns::{
 };
 pub use derived::{check_case, Hertz, Model};
 pub use scene::{
-    sin_cos_deg, InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialModel,
+    sin_cos_deg, InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialHistory,
+    TangentialModel,
 };
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

@@ -52,6 +52,66 @@ impl TangentialModel {
     ];
 }
 
+/// How Mindlin's tangential spring keeps its history: the variants of LAMMPS's `pair
+/// granular` tangential models (docs/model.md, section 14.8). With a = sqrt(R delta) the
+/// contact radius and k_t = 8 G* a, each sticking step adds -k_t v_t dt to the elastic force
+/// (`Force`) or v_t dt to the displacement xi, the force then being -k_t xi (`Displacement`);
+/// the `Rescale` variants also shrink the history by a / a_prev while the contact unloads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TangentialHistory {
+    /// What the tangential law implies: `Force` for Mindlin's (today's law, bit for bit); the
+    /// linear spring has one history only, its elongation.
+    #[default]
+    Auto,
+    /// LAMMPS `mindlin`: the history is the displacement xi, F_el = -k_t(delta) xi, so the
+    /// force follows the stiffness as the depth changes.
+    Displacement,
+    /// LAMMPS `mindlin/force`: the history is the elastic force, dF_el = -k_t(delta) v_t dt.
+    Force,
+    /// LAMMPS `mindlin_rescale`: `Displacement`, with xi scaled by a / a_prev on unloading.
+    RescaleDisplacement,
+    /// LAMMPS `mindlin_rescale/force`: `Force`, with F_el scaled by a / a_prev on unloading.
+    RescaleForce,
+}
+
+impl TangentialHistory {
+    /// Every history, in code order (the public names are [`crate::CHOICES`]').
+    pub const ALL: [TangentialHistory; 5] = [
+        TangentialHistory::Auto,
+        TangentialHistory::Displacement,
+        TangentialHistory::Force,
+        TangentialHistory::RescaleDisplacement,
+        TangentialHistory::RescaleForce,
+    ];
+
+    /// Public name, as in the Python API (LAMMPS's).
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentialHistory::Auto => "auto",
+            TangentialHistory::Displacement => "mindlin",
+            TangentialHistory::Force => "mindlin/force",
+            TangentialHistory::RescaleDisplacement => "mindlin_rescale",
+            TangentialHistory::RescaleForce => "mindlin_rescale/force",
+        }
+    }
+
+    /// Whether the history is the elastic force (else the displacement).
+    pub fn in_force(self) -> bool {
+        matches!(
+            self,
+            TangentialHistory::Auto | TangentialHistory::Force | TangentialHistory::RescaleForce
+        )
+    }
+
+    /// Whether the history shrinks with the contact radius as the contact unloads.
+    pub fn rescales(self) -> bool {
+        matches!(
+            self,
+            TangentialHistory::RescaleDisplacement | TangentialHistory::RescaleForce
+        )
+    }
+}
+
 impl NormalLaw {
     /// Every normal law, in code order (the consistency matrix runs them all); the parameters
     /// shown are placeholders, set per scene by [`NormalLaw::with_scale`].
@@ -232,6 +292,8 @@ pub struct Scene {
     pub overlap: OverlapMethod,
     /// The tangential law (default: what the normal law implies).
     pub tangential: TangentialModel,
+    /// How Mindlin's spring keeps its history (default: as the force, `mindlin/force`).
+    pub tangential_history: TangentialHistory,
     /// Most integration steps one impact may take (>= 1); past it the impact ends with
     /// `timed_out` and `stop = StepBudget`. `None`: the default budget, a fixed multiple of
     /// the contact's own number of steps ([`crate::impact::default_step_budget`]).
@@ -288,6 +350,7 @@ impl Default for Scene {
             dt_factor: 0.01,
             overlap: OverlapMethod::Auto,
             tangential: TangentialModel::Auto,
+            tangential_history: TangentialHistory::Auto,
             max_steps: None,
             tol: 1e-6,
             error_estimate: false,

@@ -50,14 +50,14 @@ pub(super) fn error_scales(
     // (1/2) m_t v^2, with m_t = 1 / (1/m + r^2/I) the mass the spring moves at the contact
     // point and k_t its stiffness at the estimated largest depth. (The force that moves v_x in
     // t_c, the scale before, is 3 / (omega_t t_c) ~ 1/6 of that on the paper's disc: it set 90
-    // % of the steps in stick, finer than any output needed.) Mindlin's xi is a force (section
-    // 14.4), the elongation times k_t.
+    // % of the steps in stick, finer than any output needed.) Mindlin's xi kept as the force
+    // (section 14.4) is the elongation times k_t = rate.
     let m_t = 1.0 / (1.0 / model.mass + r * r / model.inertia);
     let (k_xi, rate, _) = model.spring(depth_est);
     let k_t = k_xi * rate;
     // Without a spring (k_t = 0) its elongation does not act: no error of it counts.
     scale[XI] = if k_t > 0.0 {
-        scale[VX] * (m_t / k_t).sqrt() * if model.mindlin { k_t } else { 1.0 }
+        scale[VX] * (m_t / k_t).sqrt() * rate
     } else {
         f64::INFINITY
     };

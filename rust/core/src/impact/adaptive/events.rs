@@ -51,6 +51,9 @@ impl Reference<'_> {
                 Tan::Slip(_) => push(Event::ToStick),
                 Tan::None | Tan::Free => {}
             }
+            if !m.unloading && self.model.history.rescales() {
+                push(Event::Unload);
+            }
         }
         out.into_iter().flatten()
     }
@@ -108,6 +111,8 @@ impl Reference<'_> {
                 self.to_slip_value(&eval().1)
             }
             (Event::ToStick, _) => self.slip_to_stick(m, s, eval),
+            // The sphere's depth r - y grows while v_y < 0.
+            (Event::Unload, _) => s[VY],
             _ => f64::NEG_INFINITY,
         }
     }
@@ -149,7 +154,8 @@ impl Reference<'_> {
     }
 
     /// Positive when a sticking spring would stay inside the Coulomb cone: the value
-    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt), both rates along the motion of the slipping
+    /// mu dF_n/dt + s (k_t v_t + c_t dv_t/dt) (plus Mindlin's drift,
+    /// [`crate::model::Model::elastic_drift`]), both rates along the motion of the slipping
     /// body: in closed form on the exact disc (area or linear law, linear spring), by central
     /// differences elsewhere.
     fn slip_to_stick(&self, m: &Mode, s: &State, eval: impl FnOnce() -> (State, Eval)) -> f64 {
@@ -165,14 +171,27 @@ impl Reference<'_> {
             Some(rates) => rates,
             None => self.differenced_rates(m, s, &d, &e),
         };
-        let (k_xi, rate, _) = self.model.spring(e.depth);
+        let (k_xi, rate, ct) = self.model.spring(e.depth);
         // Located where the value exceeds 1e-9 of its terms, the switch is robustly past its
         // root (central differences carry ~1e-11 of the terms, the closed form round-off), and
         // late by only that fraction of the value's rise time: a switch located where the
         // value is noise leaves a spring on the cone that does not move inside, and stick and
         // slip chatter at once (the disc at theta 84, mu 0.8 lost a stick phase of 0.004 t_c
         // that way, e_T off by 1e-5 at tol 1e-6).
-        let terms = [self.mu * dfn, sg * k_xi * rate * e.v_t, sg * ddamp];
+        // Mindlin's elastic force -k_xi xi also drifts with the depth where its history is
+        // the displacement or rescaled: k_xi xi = -(F_t + c_t v_t) in slip (zero otherwise).
+        let drift = if self.model.mindlin {
+            let elastic = e.forces.f_t + ct * e.v_t;
+            self.model.elastic_drift(e.depth, -s[VY], m.unloading) * elastic
+        } else {
+            0.0
+        };
+        let terms = [
+            self.mu * dfn,
+            sg * k_xi * rate * e.v_t,
+            sg * ddamp,
+            -sg * drift,
+        ];
         let noise = STICK_MARGIN * terms.iter().map(|t| t.abs()).sum::<f64>();
         terms.iter().sum::<f64>() - noise
     }
@@ -226,7 +245,7 @@ impl Reference<'_> {
     pub(super) fn value_at(&self, m: &Mode, ev: Event, step: &Step, th: f64) -> f64 {
         let geometric = !matches!(
             ev,
-            Event::ClipOff | Event::ClipOn | Event::ToSlip | Event::ToStick
+            Event::ClipOff | Event::ClipOn | Event::ToSlip | Event::ToStick | Event::Unload
         );
         if geometric {
             let mut s = step.y0;
@@ -353,6 +372,7 @@ mod tests {
                         clip_on: true,
                         clip_hold: false,
                         tan: Tan::Slip(sg),
+                        unloading: false,
                     };
                     let (d, e) = ode.eval(&m, &s);
                     let closed = ode.disc_rates(&s, &d, &e).unwrap();

@@ -208,7 +208,8 @@ impl<'a> Reference<'a> {
         let f_n = f_el + f_d;
         let v_t = s[VX] - s[OM] * (o.cy - s[Y]);
         // (k_t, 1, c_t) for the linear spring; Mindlin's, incremental in the force, (1, k_t, c_t)
-        // at this depth, xi then being minus the elastic force.
+        // at this depth, xi then being minus the elastic force (as the displacement: (k_t, 1,
+        // c_t)). Only the sphere has Mindlin's spring: its depth r - y falls at -v_y.
         let (k_xi, rate, ct) = model.spring(o.depth);
         let trial = trial_force(k_xi, s[XI], ct, v_t);
         let (f_t, stick) = match m.tan {
@@ -221,7 +222,13 @@ impl<'a> Reference<'a> {
         d[VX] = f_t * self.inv_mass;
         d[VY] = f_n * self.inv_mass;
         d[OM] = forces.torque * self.inv_inertia;
-        d[XI] = if m.tan == Tan::Stick { rate * v_t } else { 0.0 };
+        // A rescaled history also shrinks once the contact unloads (its mode says when).
+        let shrink = || model.history_shrink(o.depth, -s[VY]) * s[XI];
+        d[XI] = match m.tan {
+            Tan::Stick if m.unloading => rate * v_t + shrink(),
+            Tan::Stick => rate * v_t,
+            _ => 0.0,
+        };
         (d[W_EL], d[W_D], d[W_T]) = forces.powers(s[Y], &v);
         let e = Eval {
             forces,

@@ -77,6 +77,7 @@ pub(super) fn apply(
         Event::Touch => {
             m.touch = ode.touch_mode(s[Y], s[PHI]);
             m.clip_on = true;
+            m.unloading = false;
             s[XI] = 0.0;
             m.tan = ode.initial_tan(m, s);
             tally.contacts += 1;
@@ -128,6 +129,7 @@ pub(super) fn apply(
             s[XI] = carrying(e.forces.f_t, kt, ct, e.v_t);
             m.tan = Tan::Stick;
         }
+        Event::Unload => m.unloading = true,
     }
 }
 

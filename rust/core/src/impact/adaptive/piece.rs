@@ -39,6 +39,9 @@ pub(super) struct Mode {
     /// `Run::resolve_chatter`).
     pub(super) clip_hold: bool,
     pub(super) tan: Tan,
+    /// Past the deepest point of a contact, for a history that shrinks as the contact unloads
+    /// (the `mindlin_rescale` variants; always false for the others).
+    pub(super) unloading: bool,
 }
 
 impl Mode {
@@ -62,6 +65,9 @@ pub(super) enum Event {
     ClipOn,
     ToSlip,
     ToStick,
+    /// The deepest point (v_y = 0), where a rescaled history starts to shrink: a kink in its
+    /// rate that the step control cannot see.
+    Unload,
 }
 
 /// Bookkeeping of one impact that is not part of the ODE state.

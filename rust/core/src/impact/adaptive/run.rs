@@ -112,6 +112,7 @@ impl<'a, 't> Run<'a, 't> {
             clip_on: true,
             clip_hold: false,
             tan: Tan::None,
+            unloading: false,
         };
         mode.tan = ode.initial_tan(&mode, &s);
         let (k1, e0) = ode.eval(&mode, &s);
