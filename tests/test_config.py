@@ -122,15 +122,19 @@ def test_cases_file_relative_to_the_config(tmp_path: Path) -> None:
 
 # --- every Scene field: a TOML key that round-trips and that the dataset digest sees -----------
 
-#: Scenes a field is changed from: the default, and one where the Hertz sphere's fields apply.
+#: Scenes a field is changed from: the default, one where the Hertz sphere's fields apply, and a
+#: pair (where the partner's fields apply).
 BASES = (rs.Scene(), rs.Scene(shape=rs.Sphere(r=0.0025), normal_law="hertz", E=3.8e11, rho=4000.0, nu=0.23,
-                              cor=0.98, mu=0.092, v=3.9))
+                              cor=0.98, mu=0.092, v=3.9),
+         rs.Scene(partner=rs.Disc(r=0.01)))
 
 
 def _candidates(name: str, value: object) -> list[object]:
     """Values other than ``value`` to try, found generically so that a new field is covered."""
     if name == "shape":
         return [rs.RegularPolygon(r=0.01, n=12, phi0_deg=3.0), rs.Sphere(r=0.003)]
+    if name == "partner":
+        return [rs.Disc(r=0.02)]
     if isinstance(value, str):
         return [alt for alt in _engine.CHOICES[name] if alt != value]
     if value is None:
@@ -165,9 +169,10 @@ def _toml(value: object) -> str:
 
 def _write_config(path: Path, scene: rs.Scene) -> Path:
     spec_dict = spec_to_dict(SweepSpec(scene, axes={"theta_deg": [30.0, 60.0]}))
-    shape = spec_dict["scene"].pop("shape")
+    tables = {key: spec_dict["scene"].pop(key) for key in ("shape", "partner") if key in spec_dict["scene"]}
     lines = ["[scene]"] + [f"{k} = {_toml(v)}" for k, v in spec_dict["scene"].items()]
-    lines += ["[scene.shape]"] + [f"{k} = {_toml(v)}" for k, v in shape.items()]
+    for key, table in tables.items():
+        lines += [f"[scene.{key}]"] + [f"{k} = {_toml(v)}" for k, v in table.items()]
     lines += ["[axes]", "theta_deg = [30.0, 60.0]"]
     path.write_text("\n".join(lines) + "\n")
     return path

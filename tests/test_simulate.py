@@ -19,7 +19,8 @@ import pytest
 
 import restitution as rs
 
-TRACE_COLUMNS = ["t", "x", "y", "phi", "vx", "vy", "omega", "f_n", "f_t", "area", "depth", "xi", "stick"]
+TRACE_COLUMNS = ["t", "x", "y", "phi", "vx", "vy", "omega", "f_n", "f_t", "area", "depth", "xi", "partner_phi",
+                 "partner_omega", "stick"]
 
 
 def disc_mass(scene: rs.Scene) -> float:
@@ -116,7 +117,7 @@ def test_record_is_the_dataclass_of_the_record_columns(disc_scene: rs.Scene) -> 
     from restitution._engine import RECORD_COLUMNS
 
     names = [f.name for f in dataclasses.fields(rs.Record)]
-    assert names == ["theta_deg", "omega_in", *RECORD_COLUMNS, "trace"]
+    assert names == ["theta_deg", "omega_in", "partner_omega_in", *RECORD_COLUMNS, "trace"]
     for theta in (37.0, 90.0):
         rec = rs.simulate(disc_scene, theta_deg=theta)
         made = rs.Record(**{name: getattr(rec, name) for name in names})

@@ -31,7 +31,8 @@ CHOICES: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.CHOICES.ite
 #: Optional parameters: None in Python, NaN ("unset") in the engine's columns; their range.
 OPTIONAL = {"kn": "> 0", "cn": ">= 0", "kt": "> 0", "nu": "in (-1, 0.5]", "plate_E": "> 0",
             "plate_nu": "in (-1, 0.5]", "cor": "in [0.01, 1]", "max_steps": "a whole number >= 1",
-            "dt_factor": "> 0"}
+            "dt_factor": "> 0", "partner_rho": "> 0", "partner_E": "> 0",
+            "partner_nu": "in (-1, 0.5]"}
 
 #: Flags: bool in Python, 0 / 1 in the engine's columns.
 FLAGS = ("error_estimate",)

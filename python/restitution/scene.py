@@ -113,6 +113,17 @@ class Scene:
     ``timed_out = True`` and ``stop = "step_budget"``. None: the default budget, a fixed multiple
     of the contact's own number of steps (docs/model.md, "Bounded work"); every record says
     which budget it ran under (``step_budget``)."""
+    partner: Shape | None = None
+    """What the particle hits: None, the plate (default); or a second, free particle of its own kind
+    (a ``Disc`` for a disc, a ``Sphere`` for a sphere), in which case ``v`` is the relative speed
+    and ``theta_deg`` the angle between the relative velocity and the tangent at first touch
+    (docs/model.md, section 17)."""
+    partner_rho: float | None = None
+    """The partner's density (kg/m^3); None: the particle's ``rho``."""
+    partner_E: float | None = None
+    """The partner's Young's modulus (Pa); None: the particle's ``E``."""
+    partner_nu: float | None = None
+    """The partner's Poisson's ratio (Hertz law); None: the particle's ``nu``."""
 
     def __post_init__(self) -> None:
         # Python checks only what the engine cannot: types and choice names. Every rule on
@@ -120,6 +131,9 @@ class Scene:
         if not isinstance(self.shape, (Disc, RegularPolygon, ConvexPolygon, Sphere)):
             raise TypeError("`shape` must be Disc, RegularPolygon, ConvexPolygon or Sphere "
                             f"(found {type(self.shape).__name__})")
+        if self.partner is not None and not isinstance(self.partner, (Disc, RegularPolygon, ConvexPolygon, Sphere)):
+            raise TypeError("`partner` must be None (the plate), Disc, RegularPolygon, ConvexPolygon or Sphere "
+                            f"(found {type(self.partner).__name__})")
         values = self.engine_values()
         try:
             _engine.check(_engine.columns(values, {}, 1), self.template_vertices())
@@ -136,7 +150,8 @@ class Scene:
                                     "n": float(self.shape.n if not isinstance(self.shape, ConvexPolygon) else 0),
                                     "phi0_deg": _engine.real("phi0_deg", self.shape.phi0_deg),
                                     "body": float(_engine.code("body", "sphere" if isinstance(self.shape, Sphere)
-                                                               else "prism"))}
+                                                               else "prism")),
+                                    **self._partner_values()}
         for name in _engine.CASE_COLUMNS:
             if name in values:
                 continue
@@ -150,6 +165,21 @@ class Scene:
             else:
                 values[name] = _engine.real(name, value)
         return values
+
+    def _partner_values(self) -> dict[str, float]:
+        """The partner's shape as engine columns (``partner_body`` "plate" and NaN without one;
+        its spin ``partner_omega_in`` 0 until an impact sets it)."""
+        nan = float("nan")
+        shape = self.partner
+        if shape is None:
+            return {"partner_body": float(_engine.code("partner_body", "plate")), "partner_n": nan,
+                    "partner_r": nan, "partner_phi0_deg": nan, "partner_omega_in": 0.0}
+        if isinstance(shape, ConvexPolygon):
+            raise _engine.RestitutionError("partner", "ConvexPolygon",
+                                           "a Disc partner for a Disc particle or a Sphere for a Sphere")
+        return {"partner_body": float(_engine.code("partner_body", "sphere" if isinstance(shape, Sphere) else "prism")),
+                "partner_n": float(shape.n), "partner_r": float(shape.r),
+                "partner_phi0_deg": _engine.real("partner_phi0_deg", shape.phi0_deg), "partner_omega_in": 0.0}
 
     def _engine_row(self) -> tuple[float, ...]:
         """:meth:`engine_values` as one row in ``CASE_COLUMNS`` order, kept from construction."""

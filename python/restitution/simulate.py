@@ -20,8 +20,11 @@ class Record:
     """Impact angle from the plate (degrees; input)."""
     omega_in: float
     """Spin before impact (rad/s, counter-clockwise positive; input)."""
+    partner_omega_in: float
+    """The partner's spin before impact (rad/s; input; 0 for the plate)."""
     e_n: float
-    """Normal restitution -vy'/vy."""
+    """Normal restitution -vy'/vy (a pair: -(g' . n_0) / (g . n_0), g the relative velocity, n_0 the
+    normal at first touch: negative where the pair turns by more than the impact angle)."""
     e_t: float | None
     """Tangential restitution vx'/vx of the centre of mass; None at theta = 90."""
     e_kin: float
@@ -66,17 +69,39 @@ class Record:
     """Estimated largest absolute error among e_N, e_T, e_kin and omega_out r / v: always for
     ``integrator="adaptive"`` / ``"reference"``, for gear5 / verlet with ``Scene(error_estimate=True)``;
     None otherwise (null in frames)."""
+    e_n_sep: float
+    """Normal restitution with the normal at separation, -(g' . n_s) / (g . n_0) (a pair; on the
+    plate, whose normal never turns, ``e_n``)."""
+    normal_rotation_deg: float
+    """Angle from the normal at first touch to the normal at separation (degrees,
+    counter-clockwise positive; 0 on the plate)."""
+    partner_omega_out: float
+    """The partner's spin after the impact (rad/s; 0 for the plate)."""
+    partner_vx_out: float
+    """The partner's velocity after the impact, in the frame where it was at rest before (m/s;
+    0 for the plate)."""
+    partner_vy_out: float
+    momentum_residual: float | None
+    """|linear momentum after - before| / (m* v): round-off for a pair (integrated in its
+    centre-of-mass frame); None for the plate."""
+    angular_momentum_residual: float | None
+    """(angular momentum about the pair's centre of mass after - before) / (m* v (r1 + r2)); None
+    for the plate."""
     trace: pl.DataFrame | None = None
     """Per-step history when ``simulate(..., trace=True)``: t, x, y, phi, vx, vy, omega, f_n, f_t,
-    area, depth, xi, stick (0 none, 1 stick, 2 slip)."""
+    area, depth, xi, partner_phi, partner_omega, stick (0 none, 1 stick, 2 slip). For a pair x, y,
+    vx, vy are the particle's relative to the partner, f_n and f_t act along and across the line of
+    centres, depth is the overlap of the centres' distance."""
 
     def as_dict(self) -> dict[str, object]:
         """The record without its trace."""
         return {f.name: getattr(self, f.name) for f in fields(self) if f.name != "trace"}
 
 
-def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bool = False) -> Record:
-    """Simulates one impact of ``scene``'s particle at ``theta_deg`` from the plate with spin ``omega_in``.
+def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, partner_omega_in: float = 0.0, *,
+             trace: bool = False) -> Record:
+    """Simulates one impact of ``scene``'s particle at ``theta_deg`` from the plate (or its partner)
+    with spin ``omega_in``.
 
     Parameters
     ----------
@@ -85,6 +110,8 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
         Impact angle from the plate in degrees, in (0, 90] (90 is head-on).
     omega_in : float
         Spin before impact in rad/s (counter-clockwise positive; forward rolling is negative).
+    partner_omega_in : float
+        The partner's spin before impact in rad/s (``Scene(partner=...)``; 0 for the plate).
     trace : bool
         Also return the per-step history as ``record.trace`` (a polars DataFrame).
 
@@ -94,12 +121,20 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
     >>> rec = rs.simulate(rs.Scene(mu=0.0, gamma=0.0), theta_deg=30.0)
     >>> round(rec.e_n, 6), rec.e_t
     (1.0, 1.0)
+
+    Two identical discs head-on at +-v are one disc on the plate at v:
+
+    >>> pair = rs.Scene(partner=rs.Disc(0.01))
+    >>> a, b = rs.simulate(rs.Scene(), 90.0), rs.simulate(pair.replace(v=2 * pair.v), 90.0)
+    >>> abs(a.e_n - b.e_n) < 1e-12
+    True
     """
     if not isinstance(scene, Scene):
         raise TypeError(f"`scene` must be a restitution.Scene (found {type(scene).__name__})")
     theta = _engine.real("theta_deg", theta_deg)
     omega = _engine.real("omega_in", omega_in)
-    row = _engine.with_values(scene._engine_row(), theta_deg=theta, omega_in=omega)
+    partner_omega = _engine.real("partner_omega_in", partner_omega_in)
+    row = _engine.with_values(scene._engine_row(), theta_deg=theta, omega_in=omega, partner_omega_in=partner_omega)
     try:
         if trace:
             values, trace_frame = _engine.trace_one(row, scene.template_vertices())
@@ -107,15 +142,17 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, *, trace: bo
             values, trace_frame = _engine.run_one(row, scene.template_vertices()), None
     except _engine.RestitutionError as err:
         raise err.at_case(None) from None  # one impact: no case to name
-    return _record(theta, omega, values, trace_frame)
+    return _record((theta, omega, partner_omega), values, trace_frame)
 
 
-def _record(theta_deg: float, omega_in: float, values: tuple[Any, ...], trace: pl.DataFrame | None) -> Record:
+def _record(inputs: tuple[float, float, float], values: tuple[Any, ...], trace: pl.DataFrame | None) -> Record:
     """The Record of an impact's inputs, its record's ``values`` (in ``RECORD_COLUMNS`` order) and
     its trace, built without the frozen dataclass's ``__init__``: that sets each of the 27 fields
     through ``object.__setattr__``, 7.7 us, most of the cost of a ``simulate`` call beyond its
     impact. The same object otherwise (frozen, equal, hashable, printable);
     ``tests/test_simulate.py`` checks that its fields are the inputs, the record columns and the trace."""
     rec = object.__new__(Record)
-    rec.__dict__.update(zip(_engine.RECORD_COLUMNS, values), theta_deg=theta_deg, omega_in=omega_in, trace=trace)
+    theta_deg, omega_in, partner_omega_in = inputs
+    rec.__dict__.update(zip(_engine.RECORD_COLUMNS, values), theta_deg=theta_deg, omega_in=omega_in,
+                        partner_omega_in=partner_omega_in, trace=trace)
     return rec

@@ -8,6 +8,9 @@ Layout (``examples/sweep_config.toml`` is a documented example)::
     [scene.shape]            # replaces the preset's shape
     kind = "disc"            # "disc" (r) | "regular_polygon" (r, n, phi0_deg) | "convex_polygon" (vertices, phi0_deg)
     r = 0.01
+    [scene.partner]          # optional: a second free particle instead of the plate (same kinds)
+    kind = "disc"
+    r = 0.01
     [axes]                   # first axis varies slowest; a value, a list, or a range
     theta_deg = { start = 4, stop = 89, step = 1 }     # stop included when on the grid
     omega_in = { start = -0.8, stop = 0.8, num = 5 }   # num points, both ends included
@@ -45,7 +48,7 @@ else:  # Python 3.10: the same parser, as a package
 
 #: [scene] keys besides ``preset`` and the ``shape`` table: every field of :class:`Scene`, so a
 #: new field is a key (and part of a dataset's digest) without editing this file.
-SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name != "shape")
+SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name not in ("shape", "partner"))
 CHOICE_AXES = CHOICES
 PRESETS = ("default", "paper")
 SHAPE_KEYS = {"disc": ("r",), "sphere": ("r",), "regular_polygon": ("r", "n", "phi0_deg"), "convex_polygon": ("vertices", "phi0_deg")}
@@ -137,6 +140,8 @@ def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str
     scene: dict[str, Any] = {k: getattr(s, k) if k in CHOICES else float(getattr(s, k))
                              for k in SCENE_KEYS if getattr(s, k) is not None}
     scene["shape"] = shape_to_dict(s.shape)
+    if s.partner is not None:
+        scene["partner"] = shape_to_dict(s.partner)
     out: dict[str, Any] = {"scene": scene}
     if spec.cases is None:
         out["axes"] = {name: spec.axis_values(name) for name in spec.axis_names}
@@ -186,7 +191,7 @@ def _number(key: str, value: Any, fail: Any) -> float:
 
 
 def _scene(table: dict[str, Any], fail: Any) -> Scene:
-    _check_keys(table, ("preset", "shape") + SCENE_KEYS, "scene", fail)
+    _check_keys(table, ("preset", "shape") + SCENE_KEYS + ("partner",), "scene", fail)
     preset = table.get("preset", "default")
     if preset not in PRESETS:
         raise fail("scene.preset", f"require one of {', '.join(map(repr, PRESETS))} (found {preset!r})")
@@ -201,22 +206,24 @@ def _scene(table: dict[str, Any], fail: Any) -> Scene:
             fields[key] = value
         else:
             fields[key] = _number(f"scene.{key}", value, fail)
-    if "shape" in table:
-        if not isinstance(table["shape"], dict):
-            raise fail("scene.shape", "require a table ([scene.shape]) with `kind`")
-        fields["shape"] = _shape(table["shape"], fail)
+    for key in ("shape", "partner"):
+        if key in table:
+            if not isinstance(table[key], dict):
+                raise fail(f"scene.{key}", f"require a table ([scene.{key}]) with `kind`")
+            fields[key] = _shape(table[key], fail, f"scene.{key}")
     try:
         return Scene.paper(**fields) if preset == "paper" else Scene(**fields)
     except (ValueError, TypeError) as err:
         raise fail(_named_key("scene", err, fields), str(err)) from None
 
 
-def _shape(table: dict[str, Any], fail: Any) -> Any:
+def _shape(table: dict[str, Any], fail: Any, where: str = "scene.shape") -> Any:
+    """The shape of the table at ``where`` ([scene.shape], or [scene.partner] for a pair)."""
     kind = table.get("kind")
     if kind not in SHAPE_KEYS:
-        raise fail("scene.shape.kind", f"require one of {', '.join(map(repr, SHAPE_KEYS))} (found {kind!r})")
+        raise fail(f"{where}.kind", f"require one of {', '.join(map(repr, SHAPE_KEYS))} (found {kind!r})")
     allowed = SHAPE_KEYS[kind]
-    _check_keys({k: v for k, v in table.items() if k != "kind"}, allowed, "scene.shape", fail)
+    _check_keys({k: v for k, v in table.items() if k != "kind"}, allowed, where, fail)
     args: dict[str, Any] = {}
     for key in allowed:
         if key not in table:
@@ -224,19 +231,19 @@ def _shape(table: dict[str, Any], fail: Any) -> Any:
         value = table[key]
         if key == "n":
             if isinstance(value, bool) or not isinstance(value, int):
-                raise fail("scene.shape.n", f"require an integer >= 3 (found {value!r})")
+                raise fail(f"{where}.n", f"require an integer >= 3 (found {value!r})")
             args[key] = value
         elif key == "vertices":
             args[key] = value
         else:
-            args[key] = _number(f"scene.shape.{key}", value, fail)
+            args[key] = _number(f"{where}.{key}", value, fail)
     if kind == "convex_polygon" and "vertices" not in args:
-        raise fail("scene.shape.vertices", "require counter-clockwise [[x, y], ...] for a convex_polygon")
+        raise fail(f"{where}.vertices", "require counter-clockwise [[x, y], ...] for a convex_polygon")
     cls = {"disc": Disc, "sphere": Sphere, "regular_polygon": RegularPolygon, "convex_polygon": ConvexPolygon}[kind]
     try:
         return cls(**args)
     except (ValueError, TypeError) as err:
-        raise fail("scene.shape", str(err)) from None
+        raise fail(where, str(err)) from None
 
 
 def _axis_values(name: str, value: Any, fail: Any) -> Any:

@@ -47,6 +47,8 @@ fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
                 ("body", 0.0),
                 ("tol", tol),
                 ("error_estimate", 0.0),
+                ("partner_body", 0.0),
+                ("partner_omega_in", 0.0),
             ] {
                 set(&mut row, name, v);
             }

@@ -37,6 +37,21 @@ impl Error {
             expected: expected.into(),
         }
     }
+
+    /// The same error about the parameter `name` (a rule written for the particle, applied
+    /// to the partner's `partner_*` column).
+    pub(crate) fn renamed(self, name: &str) -> Self {
+        match self {
+            Error::InvalidParameter {
+                value, expected, ..
+            } => Error::InvalidParameter {
+                name: name.to_string(),
+                value,
+                expected,
+            },
+            other => other,
+        }
+    }
 }
 
 /// Returns `Err(Error::InvalidParameter)` unless the condition holds.

@@ -138,6 +138,8 @@ mod tests {
             ("body", 0.0),
             ("tol", 1e-6),
             ("error_estimate", 0.0),
+            ("partner_body", 0.0),
+            ("partner_omega_in", 0.0),
         ];
         for (name, v) in base.iter().chain(set) {
             let k = CASE_COLUMNS.iter().position(|c| c == name).unwrap();

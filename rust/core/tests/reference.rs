@@ -269,6 +269,7 @@ fn mirror_image_gives_the_mirror_result() {
             vy: -0.03,
             omega: 2.0,
             phi0,
+            ..Initial::default()
         };
         let mirror = Initial {
             vx: -init.vx,

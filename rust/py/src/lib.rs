@@ -421,8 +421,22 @@ fn check_cases<'py>(
 }
 
 /// Trace columns, in the order `trace_case` returns them.
-const TRACE_COLUMNS: [&str; 13] = [
-    "t", "x", "y", "phi", "vx", "vy", "omega", "f_n", "f_t", "area", "depth", "xi", "stick",
+const TRACE_COLUMNS: [&str; 15] = [
+    "t",
+    "x",
+    "y",
+    "phi",
+    "vx",
+    "vy",
+    "omega",
+    "f_n",
+    "f_t",
+    "area",
+    "depth",
+    "xi",
+    "partner_phi",
+    "partner_omega",
+    "stick",
 ];
 
 /// Runs the one impact of `row` (as [`run_case`]) and returns (its record as a tuple, trace
@@ -441,12 +455,25 @@ fn trace_case<'py>(
     .map_err(|e| PyCoreError(e, Some(0)))?;
     let out = PyDict::new(py);
     let floats = [
-        tr.t, tr.x, tr.y, tr.phi, tr.vx, tr.vy, tr.omega, tr.f_n, tr.f_t, tr.area, tr.depth, tr.xi,
+        tr.t,
+        tr.x,
+        tr.y,
+        tr.phi,
+        tr.vx,
+        tr.vy,
+        tr.omega,
+        tr.f_n,
+        tr.f_t,
+        tr.area,
+        tr.depth,
+        tr.xi,
+        tr.partner_phi,
+        tr.partner_omega,
     ];
     for (name, col) in TRACE_COLUMNS.iter().zip(floats) {
         out.set_item(name, PyArray1::from_vec(py, col))?;
     }
-    out.set_item(TRACE_COLUMNS[12], PyArray1::from_vec(py, tr.stick))?;
+    out.set_item(TRACE_COLUMNS[14], PyArray1::from_vec(py, tr.stick))?;
     Ok((record_tuple(py, &rec)?, out))
 }
 

@@ -4,6 +4,7 @@
 
 pub mod disc;
 pub mod overlap;
+pub mod pair;
 pub mod parry;
 pub mod polygon;
 pub mod shape;

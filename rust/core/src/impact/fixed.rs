@@ -38,7 +38,7 @@ pub fn tolerance(depth_scale: f64, r: f64) -> f64 {
 /// Where in the last step the depth crossed zero, by linear interpolation (0 when the two
 /// depths are equal, e.g. both exactly zero: never 0 / 0).
 #[inline]
-fn crossing_fraction(prev_depth: f64, depth: f64) -> f64 {
+pub(super) fn crossing_fraction(prev_depth: f64, depth: f64) -> f64 {
     let span = prev_depth - depth;
     if span == 0.0 {
         0.0

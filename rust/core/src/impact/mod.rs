@@ -12,6 +12,7 @@ pub mod adaptive;
 pub mod budget;
 pub mod fixed;
 pub(crate) mod flight;
+pub(crate) mod pair;
 pub mod record;
 
 pub use fixed::{tolerance, ERROR_TOLERANCE, TOLERANCE_FLOOR_ULPS};
@@ -67,6 +68,9 @@ fn run(
 ) -> Result<Record> {
     model.check_initial(init)?;
     let scene = &model.scene;
+    if scene.partner.is_some() {
+        return pair::run(model, init, trace, cancel);
+    }
     let depth_est = estimate_max_depth(model, init)?;
     budget::check_resolution(model, init, depth_est)?;
     budget::check_contact_steps(model, init, depth_est)?;
@@ -82,7 +86,10 @@ fn run(
     }
     let mut rec = fixed::run_fixed(model, init, depth_est, trace, cancel)?;
     if scene.error_estimate {
-        rec.err_est = richardson_estimate(model, init, &rec, cancel)?;
+        rec.err_est = richardson_estimate(model, init, &rec, |half| {
+            let depth_est = estimate_max_depth(half, init)?;
+            fixed::run_fixed(half, init, depth_est, None, cancel)
+        })?;
     }
     Ok(rec)
 }
@@ -96,7 +103,7 @@ fn richardson_estimate(
     model: &Model,
     init: &Initial,
     rec: &Record,
-    cancel: &Cancel,
+    run_half: impl FnOnce(&Model) -> Result<Record>,
 ) -> Result<Option<f64>> {
     let scene = &model.scene;
     let half = Model::derive(&Scene {
@@ -105,9 +112,8 @@ fn richardson_estimate(
         error_estimate: false,
         ..scene.clone()
     })?;
-    let depth_est = estimate_max_depth(&half, init)?;
     // A half step the budget refuses (over 4e6 steps) leaves the estimate undefined.
-    let fine = match fixed::run_fixed(&half, init, depth_est, None, cancel) {
+    let fine = match run_half(&half) {
         Err(crate::error::Error::Interrupted) => return Err(crate::error::Error::Interrupted),
         Err(_) => return Ok(None),
         Ok(fine) => fine,

@@ -4,6 +4,7 @@
 //! neither depends on the other.
 
 use crate::error::{Error, Result};
+use crate::law::pair::{Lanes, PairForces};
 use crate::law::{Dof, Forces};
 use crate::model::{Initial, Model, NormalLaw};
 
@@ -109,6 +110,25 @@ pub struct Record {
     /// integrator's from a second run at half the step when `Scene::error_estimate` is set;
     /// `None` otherwise (and when the half-step run did not finish).
     pub err_est: Option<f64>,
+    /// Normal restitution with the normal at separation: -(g' . n_s) / (g . n_0) (a pair;
+    /// the plate's normal never turns, so there it is `e_n`).
+    pub e_n_sep: f64,
+    /// The angle from the normal at first touch to the normal at separation (degrees,
+    /// counter-clockwise positive; 0 on the plate).
+    pub normal_rotation_deg: f64,
+    /// The partner's spin after the impact (rad/s; 0 for the plate).
+    pub partner_omega_out: f64,
+    /// The partner's velocity after the impact, in the frame where it was at rest before
+    /// (m/s; 0 for the plate).
+    pub partner_vx_out: f64,
+    /// See `partner_vx_out`.
+    pub partner_vy_out: f64,
+    /// Linear momentum after minus before, over m* v (a pair; `None` for the plate, which
+    /// takes momentum).
+    pub momentum_residual: Option<f64>,
+    /// Angular momentum about the pair's centre of mass after minus before, over
+    /// m* v (r1 + r2) (a pair; `None` for the plate).
+    pub angular_momentum_residual: Option<f64>,
 }
 
 impl Record {
@@ -130,6 +150,7 @@ impl Record {
         let v_cp = init.vx + model.r * init.omega;
         self.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
         self.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
+        self.e_n_sep = self.e_n;
         self.timed_out = self.stop != StopReason::Separated;
         self.separated = !self.timed_out;
     }
@@ -192,7 +213,9 @@ record_columns! {
     max_depth: F64, max_area: F64, slip_events: Int, energy_in: F64, energy_out: F64,
     work_normal: F64, work_friction: F64, energy_residual: F64, separated: Bool,
     timed_out: Bool, step_budget: Int, stop: Name => StopReason::name,
-    err_est: Opt,
+    err_est: Opt, e_n_sep: F64, normal_rotation_deg: F64, partner_omega_out: F64,
+    partner_vx_out: F64, partner_vy_out: F64, momentum_residual: Opt,
+    angular_momentum_residual: Opt,
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).
@@ -225,6 +248,12 @@ pub struct Trace {
     /// Tangential spring elongation (m); for Mindlin's spring with its history kept as the
     /// force (the default), minus the elastic force (N; docs/model.md, 14.8).
     pub xi: Vec<f64>,
+    /// A pair's partner: its orientation (rad) and spin (rad/s); 0 for the plate. (For a pair
+    /// x, y, vx, vy are the particle's position and velocity relative to the partner, phi and
+    /// omega its own; f_n and f_t act along the line of centres and across it.)
+    pub partner_phi: Vec<f64>,
+    /// See `partner_phi`.
+    pub partner_omega: Vec<f64>,
 }
 
 impl Trace {
@@ -242,6 +271,27 @@ impl Trace {
         self.depth.push(depth);
         self.stick.push(f.stick.code());
         self.xi.push(xi);
+        self.partner_phi.push(0.0);
+        self.partner_omega.push(0.0);
+    }
+
+    /// Appends a pair's state (see `partner_phi`).
+    pub(crate) fn push_pair(&mut self, t: f64, q: &Lanes, v: &Lanes, f: &PairForces, xi: f64) {
+        self.t.push(t);
+        self.x.push(q[0]);
+        self.y.push(q[1]);
+        self.phi.push(q[2]);
+        self.vx.push(v[0]);
+        self.vy.push(v[1]);
+        self.omega.push(v[2]);
+        self.f_n.push(f.f_el + f.f_d);
+        self.f_t.push(f.f_t);
+        self.area.push(f.area);
+        self.depth.push(f.depth);
+        self.stick.push(f.stick.code());
+        self.xi.push(xi);
+        self.partner_phi.push(q[3]);
+        self.partner_omega.push(v[3]);
     }
 }
 

@@ -7,4 +7,4 @@ pub mod dopri;
 pub mod events;
 pub mod fixed_step;
 
-pub use fixed_step::{Gear5, Stepper, Verlet};
+pub use fixed_step::{Gear5, LaneForces, Lanes, Stepper, Verlet};

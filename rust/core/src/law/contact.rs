@@ -369,16 +369,31 @@ impl<'a, G: PlateGeometry> Contact<'a, G> {
         };
         let arm_y = o.cy - q[1];
         let v_t = v[0] - v[2] * arm_y;
-        let (f_t, stick) = if m.mindlin {
-            let (k_xi, rate, ct) = m.spring(o.depth);
-            if m.history.rescales() {
-                self.spring.rescale(o.depth);
-            }
-            self.spring
-                .step_scaled(v_t, dt, m.scene.mu, f_n, k_xi, rate, ct)
-        } else {
-            self.spring.step(v_t, dt, m.scene.mu, f_n, m.kt, m.ct)
-        };
+        let (f_t, stick) = tangential_step(&mut self.spring, m, o.depth, v_t, dt, f_n);
         Forces::on_overlap(o, q[1], f_n, (f_el, f_d, x_el, x_damp), f_t, stick)
+    }
+}
+
+/// One step of `model`'s tangential spring at depth `depth`, contact-point slip velocity
+/// `v_t` and normal force `f_n`: Mindlin's (its stiffness and damping at the depth, its history
+/// rescaled where the variant says) or the Cundall-Strack spring. The plate's and the pair's
+/// contact both step their spring here.
+#[inline(always)]
+pub(crate) fn tangential_step(
+    spring: &mut TangentialSpring,
+    model: &Model,
+    depth: f64,
+    v_t: f64,
+    dt: f64,
+    f_n: f64,
+) -> (f64, StickState) {
+    if model.mindlin {
+        let (k_xi, rate, ct) = model.spring(depth);
+        if model.history.rescales() {
+            spring.rescale(depth);
+        }
+        spring.step_scaled(v_t, dt, model.scene.mu, f_n, k_xi, rate, ct)
+    } else {
+        spring.step(v_t, dt, model.scene.mu, f_n, model.kt, model.ct)
     }
 }

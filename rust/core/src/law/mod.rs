@@ -3,6 +3,7 @@
 //! cap. Every integrator evaluates these functions.
 
 pub mod contact;
+pub mod pair;
 pub mod tangential;
 
 pub use contact::*;

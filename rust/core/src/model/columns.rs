@@ -3,7 +3,8 @@
 
 use super::derived::{check_cor, poisson};
 use super::scene::{
-    InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialHistory, TangentialModel,
+    InertiaModel, Initial, Integrator, NormalLaw, Partner, Scene, TangentialHistory,
+    TangentialModel,
 };
 use crate::error::{ensure_param, finite, non_negative, positive, Error, Result};
 use crate::geometry::{OverlapMethod, Shape};
@@ -13,7 +14,7 @@ use crate::geometry::{OverlapMethod, Shape};
 /// [`CHOICES`], an optional parameter is NaN when unset) and calls [`scene_from_columns`].
 /// Adding a parameter means a field of [`Scene`], a name here and its line in
 /// [`scene_from_columns`] (and the Python `Scene` field): nothing else.
-pub const CASE_COLUMNS: [&str; 29] = [
+pub const CASE_COLUMNS: [&str; 37] = [
     "theta_deg",
     "omega_in",
     "v",
@@ -43,12 +44,25 @@ pub const CASE_COLUMNS: [&str; 29] = [
     "max_steps",
     "tol",
     "error_estimate",
+    "partner_body",
+    "partner_n",
+    "partner_r",
+    "partner_phi0_deg",
+    "partner_rho",
+    "partner_E",
+    "partner_nu",
+    "partner_omega_in",
 ];
+
+/// How many of [`CASE_COLUMNS`], the last ones, describe the partner (`partner_*`).
+const PARTNER_COLUMNS: usize = 8;
 
 /// Public names of every choice, in code order: a choice column holds the index of its name.
 /// `body`: "prism" is a 2D body per unit depth (the disc or polygon the column `n` names),
-/// "sphere" a sphere of radius `r` (then `n` must be 0).
-pub const CHOICES: [(&str, &[&str]); 7] = [
+/// "sphere" a sphere of radius `r` (then `n` must be 0). `partner_body`: "plate" (no partner:
+/// the `partner_*` columns are then ignored and must be unset, NaN, `partner_omega_in` 0), or
+/// the partner's body as `body` says, with `partner_n`, `partner_r`, `partner_phi0_deg`.
+pub const CHOICES: [(&str, &[&str]); 8] = [
     ("integrator", &["gear5", "verlet", "reference", "adaptive"]),
     ("normal_law", &["area", "linear", "hertz"]),
     ("inertia", &["shape", "sphere"]),
@@ -65,6 +79,7 @@ pub const CHOICES: [(&str, &[&str]); 7] = [
         ],
     ),
     ("body", &["prism", "sphere"]),
+    ("partner_body", &["plate", "prism", "sphere"]),
 ];
 
 /// The impact angle's rule, written once: in (0, 90] degrees, measured from the plate.
@@ -186,8 +201,10 @@ pub(crate) fn scene_from_columns_with(
     vertices: Option<&[[f64; 2]]>,
     shape: Option<Shape>,
 ) -> Result<(Scene, Initial)> {
+    let (own, partner) = row.split_at(CASE_COLUMNS.len() - PARTNER_COLUMNS);
     let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, tangential_history, body, max_steps, tol, error_estimate] =
-        *row;
+        own.try_into().expect("the scene's own columns");
+    let (partner, partner_init) = partner_from_columns(partner.try_into().expect("8 columns"))?;
     check_theta(theta)?;
     positive("v", v)?;
     finite("omega_in", omega)?;
@@ -247,8 +264,65 @@ pub(crate) fn scene_from_columns_with(
         max_steps: step_budget(max_steps)?,
         tol,
         error_estimate: flag("error_estimate", error_estimate)?,
+        partner,
     };
-    Ok((scene, Initial::from_angle(v, theta, omega, phi0)))
+    let init = Initial::from_angle(v, theta, omega, phi0);
+    Ok((scene, init.with_partner(partner_init.0, partner_init.1)))
+}
+
+/// The partner from its columns, and its spin and orientation (degrees): `None` for the plate,
+/// whose columns must then be unset (a spin or shape given without a partner is a mistake).
+fn partner_from_columns(cols: [f64; PARTNER_COLUMNS]) -> Result<(Option<Partner>, (f64, f64))> {
+    let [body, n, r, phi0, rho, e, nu, omega] = cols;
+    finite("partner_omega_in", omega)?;
+    let body = choice("partner_body", body)?;
+    if body == 0 {
+        for (name, x) in [("partner_n", n), ("partner_r", r), ("partner_rho", rho)]
+            .into_iter()
+            .chain([
+                ("partner_E", e),
+                ("partner_nu", nu),
+                ("partner_phi0_deg", phi0),
+            ])
+        {
+            ensure_param!(
+                x.is_nan(),
+                name,
+                x,
+                "unset (NaN) without a partner (partner_body \"plate\")"
+            );
+        }
+        ensure_param!(
+            omega == 0.0,
+            "partner_omega_in",
+            omega,
+            "0 without a partner (partner_body \"plate\")"
+        );
+        return Ok((None, (0.0, 0.0)));
+    }
+    let phi0 = optional(phi0).unwrap_or(0.0);
+    check_orientation(phi0).map_err(|_| Error::invalid("partner_phi0_deg", phi0, "finite"))?;
+    let shape = if body == 2 {
+        ensure_param!(
+            n == 0.0 || n.is_nan(),
+            "partner_n",
+            n,
+            "0 for a sphere partner"
+        );
+        Shape::sphere(r).map_err(|e| e.renamed("partner_r"))?
+    } else {
+        shape_from_columns(optional(n).unwrap_or(0.0), r, None).map_err(|e| match e {
+            Error::InvalidParameter { ref name, .. } if name == "n" => e.renamed("partner_n"),
+            e => e.renamed("partner_r"),
+        })?
+    };
+    let partner = Partner {
+        shape,
+        rho: optional(rho),
+        e_modulus: optional(e),
+        nu: optional(nu),
+    };
+    Ok((Some(partner), (omega, phi0)))
 }
 
 /// The Hertz law from its columns: `nu` and `cor` required, `plate_E` and `plate_nu` both

@@ -74,10 +74,33 @@ impl Hertz {
             inv_e += (1.0 - nup * nup) / ep;
             inv_g += (2.0 - nup) / gp;
         }
+        let radius = scene.shape.circumradius();
+        Self::from_moduli(1.0 / inv_e, 1.0 / inv_g, radius, mass, cor)
+    }
+
+    /// The constants of two elastic spheres `[(E1, nu1), (E2, nu2)]` in contact, with
+    /// effective radius `r_star` and mass `m_star` (docs/model.md, section 17).
+    pub(crate) fn of_pair(
+        bodies: [(f64, f64); 2],
+        r_star: f64,
+        m_star: f64,
+        cor: f64,
+    ) -> Result<Self> {
+        let (mut inv_e, mut inv_g) = (0.0, 0.0);
+        for (e, nu) in bodies {
+            let g = e / (2.0 * (1.0 + nu));
+            inv_e += (1.0 - nu * nu) / e;
+            inv_g += (2.0 - nu) / g;
+        }
+        Self::from_moduli(1.0 / inv_e, 1.0 / inv_g, r_star, m_star, cor)
+    }
+
+    /// The constants for effective moduli `e_star`, `g_star`, radius `radius` and mass `mass`,
+    /// the damping calibrated to the head-on restitution `cor`.
+    fn from_moduli(e_star: f64, g_star: f64, radius: f64, mass: f64, cor: f64) -> Result<Self> {
         check_cor(cor)?;
         let beta = super::hertz::beta_for_cor(cor);
-        let (e_star, g_star) = (1.0 / inv_e, 1.0 / inv_g);
-        let sqrt_r = scene.shape.circumradius().sqrt();
+        let sqrt_r = radius.sqrt();
         let damp = 2.0 * (5.0f64 / 6.0).sqrt() * beta;
         Ok(Hertz {
             e_star,
@@ -93,7 +116,7 @@ impl Hertz {
 
 /// k_t and c_t of the tangential spring. Mindlin's vary with the depth (`Hertz`): these are
 /// then their values at the deepest accepted contact, r / 2 (for the rates only).
-fn tangential_constants(
+pub(super) fn tangential_constants(
     scene: &Scene,
     mindlin: Option<Hertz>,
     stiffness: f64,
@@ -204,7 +227,11 @@ impl Model {
     /// stability bound ([`Model::max_dt_factor`]).
     pub fn new(scene: &Scene) -> Result<Self> {
         let model = Self::derive(scene)?;
-        model.check_dt()?;
+        match scene.partner {
+            None => model.check_dt()?,
+            // A pair's step bound is its contact's, not the particle's on the plate.
+            Some(_) => super::pair::Pair::new(model.clone())?.check_dt()?,
+        }
         Ok(model)
     }
 

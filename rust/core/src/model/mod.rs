@@ -4,6 +4,7 @@
 pub mod columns;
 pub mod derived;
 pub mod hertz;
+pub mod pair;
 pub mod scene;
 pub mod stability;
 
@@ -11,8 +12,9 @@ pub use columns::{
     check_orientation, check_theta, scene_from_columns, shape_from_columns, CASE_COLUMNS, CHOICES,
 };
 pub use derived::{check_case, Hertz, Model};
+pub use pair::Pair;
 pub use scene::{
-    sin_cos_deg, InertiaModel, Initial, Integrator, NormalLaw, Scene, TangentialHistory,
+    sin_cos_deg, InertiaModel, Initial, Integrator, NormalLaw, Partner, Scene, TangentialHistory,
     TangentialModel,
 };
 pub use stability::{max_dt_factor, max_dt_factor_reason, ContactRates};

@@ -305,6 +305,36 @@ pub struct Scene {
     /// Whether the fixed-step integrators estimate their own error (`Record::err_est`) by a
     /// second run at half the step (Richardson); the adaptive path always does, at no cost.
     pub error_estimate: bool,
+    /// What the particle hits: `None` the plate (default), else a second free particle
+    /// (docs/model.md, section 17).
+    pub partner: Option<Partner>,
+}
+
+/// A second free particle the particle collides with, in place of the plate (docs/model.md,
+/// section 17). Its material defaults to the particle's own; its contact law, damping,
+/// friction and numerics are the scene's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Partner {
+    /// Its shape, in its body frame (a disc for a disc particle, a sphere for a sphere).
+    pub shape: Shape,
+    /// Its density (kg/m^3); `None`: the particle's.
+    pub rho: Option<f64>,
+    /// Its Young's modulus (Pa); `None`: the particle's.
+    pub e_modulus: Option<f64>,
+    /// Its Poisson's ratio (Hertz law); `None`: the particle's.
+    pub nu: Option<f64>,
+}
+
+impl Partner {
+    /// A partner of shape `shape` of the particle's own material.
+    pub fn of(shape: Shape) -> Self {
+        Partner {
+            shape,
+            rho: None,
+            e_modulus: None,
+            nu: None,
+        }
+    }
 }
 
 /// The local tolerance per unit of the target error `Scene::tol` of the adaptive integrator.
@@ -354,6 +384,7 @@ impl Default for Scene {
             max_steps: None,
             tol: 1e-6,
             error_estimate: false,
+            partner: None,
         }
     }
 }
@@ -370,6 +401,10 @@ pub struct Initial {
     pub omega: f64,
     /// Orientation at first touch (rad; ignored for a disc).
     pub phi0: f64,
+    /// The partner's spin before impact (rad/s; a pair only, 0 for the plate).
+    pub partner_omega: f64,
+    /// The partner's orientation at first touch (rad; a pair only).
+    pub partner_phi0: f64,
 }
 
 impl Initial {
@@ -381,6 +416,17 @@ impl Initial {
             vy: -v * s,
             omega,
             phi0: phi0_deg.to_radians(),
+            partner_omega: 0.0,
+            partner_phi0: 0.0,
+        }
+    }
+
+    /// The same state with the partner's spin `omega` (rad/s) and orientation (degrees) set.
+    pub fn with_partner(self, omega: f64, phi0_deg: f64) -> Self {
+        Initial {
+            partner_omega: omega,
+            partner_phi0: phi0_deg.to_radians(),
+            ..self
         }
     }
 }

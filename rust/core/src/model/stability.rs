@@ -399,13 +399,23 @@ impl Model {
 /// Largest `dt_factor` a scene accepts (its own `dt_factor` is not checked): see
 /// [`Model::max_dt_factor`]. Errors name any other invalid parameter.
 pub fn max_dt_factor(scene: &Scene) -> Result<f64> {
-    Ok(Model::derive(scene)?.max_dt_factor())
+    Ok(bounding_model(scene)?.max_dt_factor())
 }
 
 /// [`max_dt_factor`] and [`Model::dt_bound_reason`] of a scene.
 pub fn max_dt_factor_reason(scene: &Scene) -> Result<(f64, String)> {
-    let model = Model::derive(scene)?;
+    let model = bounding_model(scene)?;
     Ok((model.max_dt_factor(), model.dt_bound_reason()))
+}
+
+/// The model whose rates bound the scene's step: the particle's on the plate, or a pair's
+/// contact ([`super::pair::Pair::law`]).
+fn bounding_model(scene: &Scene) -> Result<Model> {
+    let model = Model::derive(scene)?;
+    match scene.partner {
+        None => Ok(model),
+        Some(_) => Ok(super::pair::Pair::new(model)?.law),
+    }
 }
 
 #[cfg(test)]

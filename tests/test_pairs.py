@@ -1,0 +1,92 @@
+"""Two bodies from Python (docs/model.md, section 17): ``Scene(partner=...)``, the partner's spin
+in ``simulate`` and as a sweep axis, the partner's fields as axes, the pair's record, refusals.
+
+The physics (identical pair = plate, the identity of the two normal restitutions, momentum,
+symmetries) is checked in the kernel (``rust/core/tests/pairs.rs``); here, that the API reaches it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import restitution as rs
+
+PAIR = rs.Scene(partner=rs.Disc(r=0.01))
+
+
+def test_identical_discs_head_on_are_one_disc_on_the_plate() -> None:
+    plate = rs.simulate(rs.Scene(), 90.0)
+    pair = rs.simulate(PAIR.replace(v=2 * PAIR.v), 90.0)
+    assert pair.e_n == pytest.approx(plate.e_n, rel=1e-12)
+    assert pair.contact_time == pytest.approx(plate.contact_time, rel=1e-12)
+    assert pair.max_depth == pytest.approx(2 * plate.max_depth, rel=1e-12)
+
+
+def test_the_plate_record_has_no_partner() -> None:
+    rec = rs.simulate(rs.Scene(), 30.0)
+    assert rec.partner_omega_in == 0.0 and rec.partner_omega_out == 0.0
+    assert rec.e_n_sep == rec.e_n and rec.normal_rotation_deg == 0.0
+    assert rec.momentum_residual is None and rec.angular_momentum_residual is None
+
+
+def test_elastic_frictionless_pair_turns_e_n_negative_at_grazing_incidence() -> None:
+    scene = PAIR.replace(mu=0.0, gamma=0.0, v=1.0)
+    df = rs.sweep(scene, theta_deg=[0.5, 1.0, 2.0, 30.0])
+    assert (df["e_n_sep"] - 1.0).abs().max() < 1e-6
+    # From the identity e_n = cos(dpsi) + cot(theta) sin(dpsi) (elastic): e_n < 0 iff |dpsi| > theta.
+    turned = df["normal_rotation_deg"].abs().to_numpy()
+    np.testing.assert_array_equal(df["e_n"].to_numpy() < 0, turned > df["theta_deg"].to_numpy())
+    assert (df["e_n"] < 0).sum() >= 2
+
+
+def test_partner_spin_and_fields_are_sweep_axes() -> None:
+    df = rs.sweep(PAIR.replace(mu=0.5), theta_deg=[30.0], partner_omega_in=[-2.0, 0.0, 2.0],
+                  partner_rho=[2500.0, 7800.0])
+    assert df.height == 6 and {"partner_omega_in", "partner_rho"} <= set(df.columns)
+    for row in df.iter_rows(named=True):
+        rec = rs.simulate(PAIR.replace(mu=0.5, partner_rho=row["partner_rho"]), 30.0,
+                          partner_omega_in=row["partner_omega_in"])
+        assert rec.partner_omega_out == row["partner_omega_out"] and rec.e_n == row["e_n"]
+        assert rec.momentum_residual < 1e-12 and abs(rec.angular_momentum_residual) < 1e-12
+
+
+def test_swapping_particle_and_partner_swaps_the_spins() -> None:
+    a = rs.Scene(shape=rs.Disc(0.006), partner=rs.Disc(0.012), partner_rho=4000.0, mu=0.4)
+    b = rs.Scene(shape=rs.Disc(0.012), rho=4000.0, partner=rs.Disc(0.006), partner_rho=2500.0, mu=0.4)
+    ra = rs.simulate(a, 40.0, omega_in=1.0, partner_omega_in=-3.0)
+    rb = rs.simulate(b, 40.0, omega_in=-3.0, partner_omega_in=1.0)
+    assert rb.e_n == pytest.approx(ra.e_n, rel=1e-9) and rb.e_kin == pytest.approx(ra.e_kin, rel=1e-9)
+    assert rb.omega_out == pytest.approx(ra.partner_omega_out, rel=1e-9)
+    assert rb.partner_omega_out == pytest.approx(ra.omega_out, rel=1e-9)
+
+
+def test_sphere_pairs_run_the_hertz_law() -> None:
+    glass = rs.Scene(shape=rs.Sphere(0.01), normal_law="hertz", E=4.8e10, rho=2800.0, nu=0.2, cor=1.0, mu=0.0, v=10.0)
+    plate = rs.simulate(glass, 90.0)
+    pair = rs.simulate(glass.replace(partner=rs.Sphere(0.01), v=20.0), 90.0)
+    assert pair.e_n == pytest.approx(plate.e_n, rel=1e-12)
+    assert pair.contact_time == pytest.approx(plate.contact_time, rel=1e-12)
+
+
+@pytest.mark.parametrize(("changes", "name"), [
+    ({"partner": rs.RegularPolygon(0.01, 6)}, "partner"),
+    ({"partner": rs.Sphere(0.01)}, "partner"),
+    ({"partner": rs.Disc(0.01), "integrator": "adaptive"}, "integrator"),
+    ({"partner": rs.Disc(0.01), "partner_rho": -1.0}, "partner_rho"),
+    ({"partner_rho": 3000.0}, "partner_rho"),
+])
+def test_what_a_pair_cannot_be_is_refused_naming_the_parameter(changes: dict, name: str) -> None:
+    with pytest.raises(rs.RestitutionError) as info:
+        rs.Scene(**changes)
+    assert info.value.parameter == name
+
+
+def test_partner_must_be_a_shape() -> None:
+    with pytest.raises(TypeError, match="partner"):
+        rs.Scene(partner=0.01)  # type: ignore[arg-type]
+    with pytest.raises(rs.RestitutionError) as info:
+        rs.simulate(PAIR, 30.0, partner_omega_in=math.inf)
+    assert info.value.parameter == "partner_omega_in"
