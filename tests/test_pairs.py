@@ -74,7 +74,6 @@ def test_sphere_pairs_run_the_hertz_law() -> None:
 @pytest.mark.parametrize(("changes", "name"), [
     ({"partner": rs.RegularPolygon(0.01, 6)}, "partner"),
     ({"partner": rs.Sphere(0.01)}, "partner"),
-    ({"partner": rs.Disc(0.01), "integrator": "adaptive"}, "integrator"),
     ({"partner": rs.Disc(0.01), "partner_rho": -1.0}, "partner_rho"),
     ({"partner_rho": 3000.0}, "partner_rho"),
 ])

@@ -14,10 +14,13 @@
 
 mod common;
 
-use common::bounds::{documented_gain_bound, documented_residual_bound, ADAPTIVE_TOL};
+use common::bounds::{
+    documented_angular_momentum_bound, documented_gain_bound, documented_residual_bound,
+    ADAPTIVE_TOL,
+};
 use restitution_core::{
     max_dt_factor, simulate, Error, InertiaModel, Initial, Integrator, Model, NormalLaw,
-    OverlapMethod, Record, Scene, Shape, TangentialModel,
+    OverlapMethod, Partner, Record, Scene, Shape, TangentialModel,
 };
 
 const V: f64 = 0.0357;
@@ -60,32 +63,39 @@ fn choices() -> Vec<(
 /// off) or damped.
 fn combinations(damped: bool) -> Vec<(String, Scene)> {
     let mut out = Vec::new();
-    for (name, shape) in Shape::representatives(R, 7) {
-        for (law, integrator, overlap, inertia, tangential) in choices() {
-            let base = Scene {
-                shape: shape.clone(),
-                integrator,
-                overlap,
-                inertia,
-                tangential,
-                gamma: if damped { 0.33 } else { 0.0 },
-                gamma_t: if damped { 0.5 } else { 0.0 },
-                ..Scene::default()
-            };
-            let mass = base.rho * shape.area();
-            let zeta = if damped { 0.2 } else { 0.0 };
-            let scene = Scene {
-                normal_law: law.with_scale(LINEAR_KN, zeta, mass),
-                ..base
-            };
-            let label = format!(
-                "{name} {} {} {} {} {tangential:?}",
-                law.name(),
-                integrator.name(),
-                overlap.name(),
-                inertia.name()
-            );
-            out.push((label, scene));
+    for (shape_name, shape) in Shape::representatives(R, 7) {
+        for (partner_name, partner) in Partner::representatives(&shape) {
+            for (law, integrator, overlap, inertia, tangential) in choices() {
+                let name = match partner {
+                    None => shape_name.clone(),
+                    Some(_) => format!("{shape_name}+{partner_name}"),
+                };
+                let base = Scene {
+                    shape: shape.clone(),
+                    partner: partner.clone(),
+                    integrator,
+                    overlap,
+                    inertia,
+                    tangential,
+                    gamma: if damped { 0.33 } else { 0.0 },
+                    gamma_t: if damped { 0.5 } else { 0.0 },
+                    ..Scene::default()
+                };
+                let mass = base.rho * shape.area();
+                let zeta = if damped { 0.2 } else { 0.0 };
+                let scene = Scene {
+                    normal_law: law.with_scale(LINEAR_KN, zeta, mass),
+                    ..base
+                };
+                let label = format!(
+                    "{name} {} {} {} {} {tangential:?}",
+                    law.name(),
+                    integrator.name(),
+                    overlap.name(),
+                    inertia.name()
+                );
+                out.push((label, scene));
+            }
         }
     }
     out
@@ -125,6 +135,8 @@ fn mirror_init(init: &Initial) -> Initial {
         vx: -init.vx,
         omega: -init.omega,
         phi0: -init.phi0,
+        partner_omega: -init.partner_omega,
+        partner_phi0: -init.partner_phi0,
         ..*init
     }
 }
@@ -184,19 +196,33 @@ fn scaled(scene: &Scene) -> Scene {
         }
     };
     let mass = 10.0 * scene.rho * shape.area();
+    // A stiffness scales like E times a length per unit depth (Pa), like E times an area for a
+    // sphere (N/m): kn / (E r) is fixed for a sphere, kn / E for a 2D body.
+    let k_scale = if scene.shape.is_sphere() { 1e4 } else { 1e3 };
     let normal_law = match scene.normal_law {
         NormalLaw::Linear { kn, cn } => {
             let zeta = cn / (2.0 * (kn * scene.rho * scene.shape.area()).sqrt());
-            scene.normal_law.with_scale(1000.0 * kn, zeta, mass)
+            scene.normal_law.with_scale(k_scale * kn, zeta, mass)
         }
         law => law,
     };
+    let partner = scene.partner.clone().map(|p| Partner {
+        shape: match p.shape {
+            Shape::Sphere { r } => Shape::Sphere { r: 10.0 * r },
+            Shape::Disc { r } => Shape::Disc { r: 10.0 * r },
+            other => other,
+        },
+        rho: p.rho.map(|x| 10.0 * x),
+        e_modulus: p.e_modulus.map(|x| 1000.0 * x),
+        nu: p.nu,
+    });
     Scene {
         shape,
         rho: 10.0 * scene.rho,
         e_modulus: 1000.0 * scene.e_modulus,
         normal_law,
-        kt: scene.kt.map(|k| 1000.0 * k),
+        kt: scene.kt.map(|k| k_scale * k),
+        partner,
         ..scene.clone()
     }
 }
@@ -247,7 +273,15 @@ fn check_impact(
     t: &mut Tally,
 ) {
     let (v, r) = (V, scene.shape.circumradius());
-    let init = Initial::from_angle(v, theta, w_rv * v / r, phi0);
+    let partner_r = scene.partner.as_ref().map_or(r, |p| p.shape.circumradius());
+    let init = Initial::from_angle(v, theta, w_rv * v / r, phi0).with_partner(
+        if scene.partner.is_some() {
+            -0.5 * w_rv * v / partner_r
+        } else {
+            0.0
+        },
+        0.0,
+    );
     let what = format!(
         "{label} mu {} theta {theta} omega r/v {w_rv} phi0 {phi0}",
         scene.mu
@@ -290,7 +324,11 @@ fn check_impact(
             t.fail(format!("{what}: energy residual {:e}", rec.energy_residual));
         }
     }
-    check_disc_limits(&what, scene, &init, &rec, t);
+    if scene.partner.is_some() {
+        check_pair(&what, scene, &init, &rec, t);
+    } else {
+        check_disc_limits(&what, scene, &init, &rec, t);
+    }
     if symmetries {
         check_symmetries(&what, label, scene, &init, &rec, t);
     }
@@ -329,7 +367,8 @@ fn check_symmetries(
         }
     }
     let big = scaled(scene);
-    let big_init = Initial::from_angle(10.0 * v, theta, init.omega, phi0);
+    let big_init = Initial::from_angle(10.0 * v, theta, init.omega, phi0)
+        .with_partner(init.partner_omega, init.partner_phi0.to_degrees());
     match simulate(&big, &big_init) {
         Ok(b) => {
             let (g0, g1) = (groups(rec, v, r), groups(&b, 10.0 * v, 10.0 * r));
@@ -344,6 +383,54 @@ fn check_symmetries(
             }
         }
         Err(e) => t.fail(format!("{what}: scaled scene refused: {e}")),
+    }
+}
+
+/// A pair conserves linear and angular momentum (about its centre of mass), and swapping
+/// particle and partner gives the same impact with the spins exchanged.
+fn check_pair(what: &str, scene: &Scene, init: &Initial, rec: &Record, t: &mut Tally) {
+    let lin = rec.momentum_residual.unwrap_or(f64::NAN);
+    let ang = rec.angular_momentum_residual.unwrap_or(f64::NAN);
+    let bound = documented_angular_momentum_bound(scene);
+    if !(lin <= 1e-12 && ang.abs() <= bound) {
+        t.fail(format!("{what}: momentum residuals {lin:e} {ang:e}"));
+    }
+    let Some(partner) = &scene.partner else {
+        return;
+    };
+    let swapped = Scene {
+        shape: partner.shape.clone(),
+        rho: partner.rho.unwrap_or(scene.rho),
+        e_modulus: partner.e_modulus.unwrap_or(scene.e_modulus),
+        partner: Some(Partner {
+            shape: scene.shape.clone(),
+            rho: Some(scene.rho),
+            e_modulus: Some(scene.e_modulus),
+            nu: None,
+        }),
+        ..scene.clone()
+    };
+    let seen = Initial {
+        omega: init.partner_omega,
+        partner_omega: init.omega,
+        ..*init
+    };
+    match simulate(&swapped, &seen) {
+        Ok(b) => {
+            let d = [
+                rec.e_n - b.e_n,
+                rec.e_kin - b.e_kin,
+                (rec.omega_out - b.partner_omega_out) * scene.shape.circumradius() / V,
+                (rec.partner_omega_out - b.omega_out) * partner.shape.circumradius() / V,
+            ];
+            let worst = d.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            if !(worst <= symmetry_tol(scene)) {
+                t.fail(format!(
+                    "{what}: exchange of the bodies: differ by {worst:e}"
+                ));
+            }
+        }
+        Err(e) => t.fail(format!("{what}: exchanged pair refused: {e}")),
     }
 }
 
@@ -411,7 +498,9 @@ fn huge_mu(scene: &Scene) -> f64 {
 /// (theta, omega_in r / v, phi0) in turn; the refused ones listed.
 fn run_matrix(impacts: &[(f64, f64, f64)]) -> Tally {
     let mut t = Tally::default();
-    let mut next = impacts.iter().cycle();
+    // The plate's scenes take the impacts in turn as they did before pairs joined the matrix;
+    // the pairs take them in turn apart.
+    let (mut next, mut next_pair) = (impacts.iter().cycle(), impacts.iter().cycle());
     for damped in [false, true] {
         for (label, base) in combinations(damped) {
             for mu in [0.0, 0.5, huge_mu(&base)] {
@@ -422,7 +511,12 @@ fn run_matrix(impacts: &[(f64, f64, f64)]) -> Tally {
                         continue;
                     }
                 };
-                let &(theta, w, phi) = next.next().unwrap();
+                let it = if scene.partner.is_some() {
+                    &mut next_pair
+                } else {
+                    &mut next
+                };
+                let &(theta, w, phi) = it.next().unwrap();
                 check_impact(&label, &scene, theta, w, phi, true, &mut t);
             }
         }
@@ -470,7 +564,8 @@ fn quick_matrix() {
                 "`normal_law`",
                 "`tangential`",
                 "`kt`",
-                "`integrator`"
+                "`integrator`",
+                "`partner`"
             ]
             .iter()
             .any(|name| r.contains(name)),

@@ -303,7 +303,10 @@ fn mirror_image_gives_the_mirrored_record() {
 }
 
 /// An isolated pair conserves linear and angular momentum (about its centre of mass): with
-/// friction, damping, spins and unequal bodies, to round-off.
+/// friction, damping, spins and unequal bodies. Linear momentum by construction (the centre of
+/// mass is not integrated), angular momentum because both bodies feel their force at one point:
+/// Verlet, the adaptive path and the reference keep it to round-off; Gear-5, not symplectic, to
+/// its own error, which falls with the step.
 #[test]
 fn an_isolated_pair_conserves_momentum() {
     let scene = Scene {
@@ -316,9 +319,12 @@ fn an_isolated_pair_conserves_momentum() {
         }),
         ..Scene::default()
     };
-    for integrator in BOTH {
+    for integrator in Integrator::ALL {
         let scene = Scene {
             integrator,
+            dt_factor: integrator.default_dt_factor(),
+            // The adaptive path keeps it to its tolerance (2.6e-11 measured at tol 1e-6).
+            tol: 1e-9,
             ..scene.clone()
         };
         for (theta, w1, w2) in [(15.0, 0.0, 0.0), (45.0, 5.0, -20.0), (80.0, -3.0, 9.0)] {
@@ -328,8 +334,13 @@ fn an_isolated_pair_conserves_momentum() {
             );
             let lin = rec.momentum_residual.unwrap();
             let ang = rec.angular_momentum_residual.unwrap();
+            let bound = match integrator {
+                Integrator::Gear5 => 1e-8,
+                Integrator::Adaptive => 1e-2 * scene.tol,
+                _ => 1e-12,
+            };
             assert!(lin < 1e-12, "{integrator:?} {theta}: linear {lin:e}");
-            assert!(ang.abs() < 1e-12, "{integrator:?} {theta}: angular {ang:e}");
+            assert!(ang.abs() < bound, "{integrator:?} {theta}: angular {ang:e}");
             assert!(
                 rec.energy_out < rec.energy_in,
                 "damped and frictional: energy lost"
@@ -337,6 +348,31 @@ fn an_isolated_pair_conserves_momentum() {
             assert!(rec.energy_residual.abs() < 1e-6, "{}", rec.energy_residual);
         }
     }
+    // Gear-5's angular momentum error falls with the step: largest without tangential damping
+    // (the undamped spring rings), 1.2e-10 here at the default step.
+    let ringing = Scene {
+        mu: 0.5,
+        gamma: 0.0,
+        gamma_t: 0.0,
+        normal_law: NormalLaw::Linear { kn: 1e5, cn: 0.0 },
+        ..disc_pair(Scene::default())
+    };
+    let at = |dt_factor: f64| {
+        let init = Initial::from_angle(V, 85.0, -0.5 * V / R, 0.0).with_partner(0.25 * V / R, 0.0);
+        let rec = run(
+            &Scene {
+                dt_factor,
+                ..ringing.clone()
+            },
+            &init,
+        );
+        rec.angular_momentum_residual.unwrap().abs()
+    };
+    let (coarse, mid, fine) = (at(0.01), at(0.005), at(0.0025));
+    assert!(
+        fine < mid && mid < coarse && coarse < 1e-8,
+        "Gear-5: {coarse:e}, {mid:e}, {fine:e}"
+    );
 }
 
 /// Without damping an elastic pair gains no energy beyond the fixed steps' bound (1e-6 at the
@@ -441,13 +477,6 @@ fn what_a_pair_cannot_be_is_refused_naming_the_parameter() {
             },
         ),
         (
-            "integrator",
-            disc_pair(Scene {
-                integrator: Integrator::Adaptive,
-                ..Scene::default()
-            }),
-        ),
-        (
             "partner_rho",
             Scene {
                 partner: Some(Partner {
@@ -481,4 +510,84 @@ fn what_a_pair_cannot_be_is_refused_naming_the_parameter() {
     assert!(
         matches!(res, Err(Error::InvalidParameter { ref name, .. }) if name == "partner_omega_in")
     );
+}
+
+/// The adaptive path on pairs meets its tolerance against the reference (largest error of e_N,
+/// e_T, e_kin and omega_out r / v at most 3 tol, as promised on the plate) and its `err_est`
+/// covers the error in at least 95 % of the impacts, over angles, friction, damping and spins.
+#[test]
+fn adaptive_pairs_meet_their_tolerance() {
+    let mut covered = (0, 0);
+    for tol in [1e-4, 1e-6, 1e-8] {
+        let mut worst: f64 = 0.0;
+        for (mu, gamma) in [(0.0, 0.0), (0.1, 0.33), (0.5, 0.33), (1.0, 0.33)] {
+            for theta in [2.0, 10.0, 30.0, 60.0, 89.0] {
+                let init = Initial::from_angle(V, theta, 1.0, 0.0).with_partner(-2.0, 0.0);
+                let at = |integrator, dt_factor| {
+                    let scene = disc_pair(Scene {
+                        mu,
+                        gamma,
+                        integrator,
+                        dt_factor,
+                        tol,
+                        ..Scene::default()
+                    });
+                    run(&scene, &init)
+                };
+                let (fast, reference) = (
+                    at(Integrator::Adaptive, 1.0),
+                    at(Integrator::Reference, 0.2),
+                );
+                let err = fast.accuracy_distance(&reference, R, V);
+                worst = worst.max(err / tol);
+                covered.0 += usize::from(fast.err_est.unwrap() >= err);
+                covered.1 += 1;
+            }
+        }
+        assert!(worst <= 3.0, "tol {tol}: largest error {worst:.2} tol");
+    }
+    assert!(
+        20 * covered.0 >= 19 * covered.1,
+        "err_est covers {covered:?}"
+    );
+}
+
+/// On the adaptive path too, two identical discs head-on are one disc on the plate (to the
+/// tolerance: the two paths take different steps), and the identity of the two normal
+/// restitutions holds to the tolerance.
+#[test]
+fn adaptive_pairs_keep_the_plate_equivalence_and_the_identity() {
+    let tol = 1e-8;
+    let adaptive = |scene: Scene| Scene {
+        integrator: Integrator::Adaptive,
+        tol,
+        ..scene
+    };
+    let plate = run(
+        &adaptive(Scene::default()),
+        &Initial::from_angle(V, 90.0, 0.0, 0.0),
+    );
+    let pair = run(
+        &adaptive(disc_pair(Scene::default())),
+        &Initial::from_angle(2.0 * V, 90.0, 0.0, 0.0),
+    );
+    assert!(
+        (pair.e_n - plate.e_n).abs() < 3.0 * tol,
+        "{} vs {}",
+        pair.e_n,
+        plate.e_n
+    );
+    let scene = adaptive(disc_pair(Scene {
+        mu: 0.0,
+        ..Scene::default()
+    }));
+    for theta in [0.5, 5.0, 40.0] {
+        let rec = run(&scene, &Initial::from_angle(1.0, theta, 0.0, 0.0));
+        let (s, c) = rec.normal_rotation_deg.to_radians().sin_cos();
+        let cot = 1.0 / (theta as f64).to_radians().tan();
+        assert!(
+            (rec.e_n - (rec.e_n_sep * c + cot * s)).abs() < 3.0 * tol * (1.0 + cot),
+            "theta {theta}"
+        );
+    }
 }

@@ -12,7 +12,7 @@
 //! m* = m / 2), and a rigid partner (E2, r2 -> inf) gives back the plate's L = 4 r1.
 
 use super::derived::{tangential_constants, Hertz, Model};
-use super::scene::{InertiaModel, Integrator, NormalLaw, Partner, Scene, TangentialModel};
+use super::scene::{InertiaModel, NormalLaw, Partner, Scene, TangentialModel};
 use crate::error::{ensure_param, positive, Error, Result};
 use crate::geometry::Shape;
 
@@ -101,7 +101,7 @@ impl Pair {
 }
 
 /// The pairings a pair has: a disc with a disc under the area or linear law, a sphere with a
-/// sphere under the Hertz or linear law; the fixed-step integrators; no plate parameters.
+/// sphere under the Hertz or linear law; no plate parameters.
 fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
     let same_kind = match (&scene.shape, &partner.shape) {
         (Shape::Disc { .. }, Shape::Disc { .. }) | (Shape::Sphere { .. }, Shape::Sphere { .. }) => {
@@ -118,12 +118,6 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
              particle; pairs with polygons are not modelled)",
             partner_name(&scene.shape)
         )
-    );
-    ensure_param!(
-        matches!(scene.integrator, Integrator::Gear5 | Integrator::Verlet),
-        "integrator",
-        scene.integrator.name(),
-        "\"gear5\" or \"verlet\" for a pair (the adaptive path has no pair loop)"
     );
     if let NormalLaw::Hertz { plate, .. } = scene.normal_law {
         ensure_param!(

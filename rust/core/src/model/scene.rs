@@ -326,6 +326,30 @@ pub struct Partner {
 }
 
 impl Partner {
+    /// The partners the consistency matrix pairs `shape` with, named: none (the plate), a twin
+    /// of the particle, and a body of its kind twice as large, three times as dense and twice as
+    /// stiff (a polygon's are refused: pairs with polygons are not modelled).
+    pub fn representatives(shape: &Shape) -> Vec<(String, Option<Partner>)> {
+        let r = shape.circumradius();
+        let big = match shape {
+            Shape::Sphere { .. } => Shape::Sphere { r: 2.0 * r },
+            _ => Shape::Disc { r: 2.0 * r },
+        };
+        vec![
+            ("plate".to_string(), None),
+            ("twin".to_string(), Some(Partner::of(shape.clone()))),
+            (
+                "big".to_string(),
+                Some(Partner {
+                    shape: big,
+                    rho: Some(7500.0),
+                    e_modulus: None,
+                    nu: None,
+                }),
+            ),
+        ]
+    }
+
     /// A partner of shape `shape` of the particle's own material.
     pub fn of(shape: Shape) -> Self {
         Partner {

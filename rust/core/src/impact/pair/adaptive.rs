@@ -1,0 +1,439 @@
+//! The adaptive path on a pair (docs/model.md, section 17.5): Dormand-Prince 5(4)
+//! ([`crate::integrate::dopri`]) on the smooth pieces of the pair's contact law, in the same
+//! centre-of-mass coordinates as the fixed-step loop, every switch between pieces located on
+//! the step's dense output and the integration restarted there: the clip switching on (and
+//! off), stick -> slip, slip -> stick, and separation. The works are integrated as components
+//! of the same ODE, so the energy audit is accurate to the tolerance too. Round bodies cannot
+//! touch again once apart: the impact ends at separation.
+//!
+//! The continuous-time law is the dt -> 0 limit of the fixed steps' (docs/model.md,
+//! sections 4, 5): while sticking d(xi)/dt = rate v_t and F_t = -k_xi xi - c_t v_t; while
+//! slipping F_t = mu F_n s and the spring follows algebraically; slip ends where the sticking
+//! spring's trial force would move inside the cone, s dF_trial/dt < mu dF_n/dt (both rates
+//! taken along the motion by a forward difference).
+
+use super::ode::{Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WN, WT, X, XI, Y};
+use super::record::close_pair;
+use crate::cancel::Cancel;
+use crate::error::Result;
+use crate::geometry::pair::PairGeometry;
+use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::integrate::dopri::{root_error_ratio, DenseStep};
+use crate::law::contact::NormalForce;
+use crate::law::pair::PairForces;
+use crate::law::StickState;
+use crate::model::{Initial, NormalLaw, Pair};
+use crate::numerics::roots;
+use std::f64::consts::PI;
+
+/// Factor on the local errors accumulated in quadrature that makes `err_est` (the plate's
+/// adaptive path's, measured there: `impact::adaptive::ERR_EST_FACTOR`).
+const ERR_EST_FACTOR: f64 = 2.25;
+
+/// Consecutive pieces ended by a switch within [`CHATTER_SPAN`] of the contact time after which
+/// a step ignores the switches that chatter: a slipping contact whose cone shrinks faster than
+/// a stuck spring can follow (the tail of a contact at large mu) alternates stick and slip in
+/// pieces of ~1e-17 s; it then slides along the cone for the step, as Coulomb's law says.
+const MAX_CHATTER: u32 = 8;
+
+/// See [`MAX_CHATTER`], in units of the estimated contact time.
+const CHATTER_SPAN: f64 = 1e-9;
+/// Integrates one pair impact on the adaptive path (validated pair and initial state, the
+/// estimated largest overlap `depth_est`); `tol` the local tolerance per step.
+pub(super) fn integrate<G: PairGeometry>(
+    pair: &Pair,
+    init: &Initial,
+    geometry: G,
+    (depth_est, tol, max_steps): (f64, f64, u64),
+    trace: Option<&mut Trace>,
+    cancel: &Cancel,
+) -> Result<Record> {
+    let mut run = Run::new(pair, init, geometry, depth_est, tol);
+    run.rec.step_budget = max_steps;
+    let mut trace = trace;
+    if let Some(tr) = trace.as_deref_mut() {
+        run.push(tr);
+    }
+    let mut step = DenseStep::<NS, NS>::default();
+    let stop = loop {
+        cancel.poll(run.attempts)?;
+        if run.attempts >= max_steps {
+            break StopReason::StepBudget;
+        }
+        if run.t > run.t_end {
+            break StopReason::ContactTimeBudget;
+        }
+        if run.attempt(&mut step) {
+            if let Some(tr) = trace.as_deref_mut() {
+                run.push(tr);
+            }
+            if run.separated {
+                break StopReason::Separated;
+            }
+        }
+    };
+    Ok(run.finish(stop))
+}
+
+/// The state of one pair impact between steps.
+struct Run<'a, G> {
+    ode: PairOde<'a, G>,
+    init: Initial,
+    mode: Mode,
+    s: State,
+    k1: State,
+    t: f64,
+    h: f64,
+    h_max: f64,
+    /// The largest step near touch, where the damping grows like a root of the time.
+    h_singular: f64,
+    t_end: f64,
+    /// 1 / (tol x scale) of each component.
+    weight: State,
+    /// Local errors accumulated in quadrature (`err_est`).
+    acc: State,
+    attempts: u64,
+    steps: u64,
+    /// Consecutive pieces shorter than the chatter span, and that span (s).
+    chatter: u32,
+    chatter_span: f64,
+    separated: bool,
+    rec: Record,
+}
+
+impl<'a, G: PairGeometry> Run<'a, G> {
+    fn new(pair: &'a Pair, init: &Initial, geometry: G, depth_est: f64, tol: f64) -> Self {
+        let law = &pair.law;
+        let speed = init.vx.hypot(init.vy);
+        let t_est = PI * depth_est / init.vy.abs();
+        let ode = PairOde {
+            pair,
+            geometry,
+            mu: law.scene.mu,
+            normal: NormalForce::new(law),
+            inv: [
+                1.0 / pair.m_star,
+                1.0 / pair.particle.inertia,
+                1.0 / pair.i2,
+            ],
+            fd_step: 1e-7 * t_est,
+        };
+        let s: State = [
+            0.0,
+            geometry.touch_distance(),
+            init.vx,
+            init.vy,
+            init.phi0,
+            init.omega,
+            init.partner_phi0,
+            init.partner_omega,
+            0.0,
+            0.0,
+            0.0,
+        ];
+        let mut mode = Mode {
+            clipped: false,
+            tan: Tan::None,
+        };
+        // The mode just after touch, where the linear law's dashpot already pushes (at touch
+        // itself no overlap acts yet): probed a trillionth of the contact in.
+        let mut probe = s;
+        probe[Y] += 1e-12 * t_est * init.vy;
+        probe[X] += 1e-12 * t_est * init.vx;
+        mode.tan = ode.initial_tan(&mode, &probe);
+        let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
+        let weight =
+            error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
+        let k1 = ode.eval_new(&mode, &s).0;
+        let h_max = law.scene.dt_factor * law.t_ref;
+        Run {
+            ode,
+            init: *init,
+            mode,
+            s,
+            k1,
+            t: 0.0,
+            h: h_max.min(t_est * tol.powf(2.0 / 3.0)),
+            h_max,
+            h_singular: t_est * tol.powf(2.0 / 3.0),
+            t_end: TIMEOUT_CONTACT_TIMES * t_est,
+            weight,
+            acc: [0.0; NS],
+            attempts: 0,
+            steps: 0,
+            chatter: 0,
+            chatter_span: CHATTER_SPAN * t_est,
+            separated: false,
+            rec: Record {
+                contacts: 1,
+                energy_in,
+                ..Record::default()
+            },
+        }
+    }
+
+    /// One attempted step; true when it was accepted (up to a switch, which it then applies).
+    fn attempt(&mut self, step: &mut DenseStep<NS, NS>) -> bool {
+        self.attempts += 1;
+        let h = self.capped_step();
+        let (ode, mode) = (&self.ode, self.mode);
+        step.take(&self.s, &self.k1, h, |_, y, k| {
+            ode.eval(&mode, y, k);
+        });
+        let err = self.error_norm(step, h);
+        if !(err <= 1.0) {
+            self.h = h * if err.is_finite() {
+                step_factor(err)
+            } else {
+                0.2
+            };
+            return false;
+        }
+        let first = self.first_switch(step);
+        let theta = first.map_or(1.0, |(th, _)| th);
+        let s_new = if theta < 1.0 { step.at(theta) } else { step.y1 };
+        for i in 0..NS {
+            let e = step.err[i] * theta;
+            self.acc[i] = self.acc[i].hypot(e);
+        }
+        self.track_extremes(step, theta);
+        self.s = s_new;
+        self.t += theta * h;
+        self.steps += 1;
+        if let Some((_, ev)) = first {
+            self.apply(ev);
+            self.chatter = if theta * h <= self.chatter_span {
+                self.chatter + 1
+            } else {
+                0
+            };
+        } else {
+            self.chatter = 0;
+        }
+        self.k1 = self.ode.eval_new(&self.mode, &self.s).0;
+        self.h = (h * step_factor(err.max(1e-12))).min(self.h_max);
+        true
+    }
+
+    /// The step to take: the controller's, at most the largest; near touch at most the step
+    /// whose error a root singularity of the force does not hide (the plate's rule).
+    fn capped_step(&self) -> f64 {
+        let mut h = self.h.min(self.h_max);
+        if !self.mode.clipped && self.singular() {
+            if self.t < 2.0 * self.h_singular {
+                h = h.min(self.h_singular);
+            }
+            // Towards separation, half the time left until the overlap closes (the force's
+            // root singularity lies there too).
+            let s = &self.s;
+            let d = s[X].hypot(s[Y]);
+            let (depth, rate) = (
+                self.ode.geometry.touch_distance() - d,
+                (s[X] * s[GX] + s[Y] * s[GY]) / d,
+            );
+            if depth > 0.0 && rate > 0.0 {
+                h = h.min((0.5 * depth / rate).max(self.h_singular));
+            }
+        }
+        h.max(1e-14 * self.h_max)
+    }
+
+    /// Whether the normal force has a root singularity at touch and separation (the area and
+    /// Hertz laws; the linear law's force is smooth there).
+    fn singular(&self) -> bool {
+        !matches!(self.ode.pair.law.scene.normal_law, NormalLaw::Linear { .. })
+    }
+
+    /// The step's scaled error norm, the embedded estimate understating a step from touch by
+    /// the tableau's factor (`root_error_ratio`).
+    fn error_norm(&self, step: &DenseStep<NS, NS>, h: f64) -> f64 {
+        let factor = if self.singular() && self.t < 2.0 * h {
+            let p = match self.ode.pair.law.scene.normal_law {
+                NormalLaw::Hertz { .. } => 0.25,
+                _ => 0.5,
+            };
+            root_error_ratio(p, self.t / h, false)
+        } else {
+            1.0
+        };
+        (0..NS)
+            .filter(|&i| i != XI || self.mode.tan == Tan::Stick)
+            .map(|i| step.err[i].abs() * self.weight[i])
+            .fold(0.0, f64::max)
+            * factor
+    }
+
+    /// The first switch inside the accepted step: (fraction of the step, event).
+    fn first_switch(&self, step: &DenseStep<NS, NS>) -> Option<(f64, Event)> {
+        let chattering = self.chatter >= MAX_CHATTER;
+        let mut first: Option<(f64, Event)> = None;
+        for ev in self.ode.candidates(&self.mode) {
+            if chattering && matches!(ev, Event::ToStick | Event::ClipOff) {
+                continue;
+            }
+            let g = |th: f64| self.ode.event_value(&self.mode, ev, &step.at(th));
+            let g1 = g(1.0);
+            if !(g1 > 0.0) {
+                continue;
+            }
+            let g0 = g(0.0);
+            let th = if g0 > 0.0 {
+                0.0
+            } else {
+                roots::bracket(g, (0.0, g0), (1.0, g1), 1e-12).1
+            };
+            if first.is_none_or(|(best, _)| th < best) {
+                first = Some((th, ev));
+            }
+        }
+        first
+    }
+
+    /// Switches the mode at event `ev` and sets the algebraic part of the state.
+    fn apply(&mut self, ev: Event) {
+        let (ode, s) = (&self.ode, &mut self.s);
+        match ev {
+            Event::Separate => self.separated = true,
+            Event::ClipOn => {
+                self.mode = Mode {
+                    clipped: true,
+                    tan: Tan::Free,
+                }
+            }
+            Event::ClipOff => {
+                self.mode.clipped = false;
+                s[XI] = 0.0;
+                self.mode.tan = ode.initial_tan(&self.mode, s);
+            }
+            Event::ToSlip => {
+                let e = ode.eval_new(&self.mode, s).1;
+                self.mode.tan = Tan::Slip(e.trial.signum());
+                self.rec.slip_events += 1;
+            }
+            Event::ToStick => {
+                let e = ode.eval_new(&self.mode, s).1;
+                s[XI] = ode.slipping_xi(&e);
+                self.mode.tan = Tan::Stick;
+            }
+        }
+    }
+
+    /// The largest overlap and area inside the taken part of the step: at its end, and where
+    /// the normal velocity turns (the deepest point), located on the dense output.
+    fn track_extremes(&mut self, step: &DenseStep<NS, NS>, theta: f64) {
+        let g_n = |th: f64| {
+            let s = step.at(th);
+            s[X] * s[GX] + s[Y] * s[GY]
+        };
+        let (a, b) = (g_n(0.0), g_n(theta));
+        let mut at = vec![theta];
+        if a < 0.0 && b > 0.0 {
+            at.push(roots::bracket(g_n, (0.0, a), (theta, b), 1e-10 * theta).0);
+        }
+        for th in at {
+            let e = self.ode.eval_new(&self.mode, &step.at(th)).1;
+            self.rec.max_depth = self.rec.max_depth.max(e.depth);
+            self.rec.max_area = self.rec.max_area.max(e.area);
+        }
+    }
+
+    fn push(&self, tr: &mut Trace) {
+        let s = &self.s;
+        let e = self.ode.eval_new(&self.mode, s).1;
+        let f = PairForces {
+            f_el: e.f_el,
+            f_d: e.f_d,
+            f_t: e.f_t,
+            n: e.n,
+            arms: e.arms,
+            area: e.area,
+            depth: e.depth,
+            stick: match self.mode.tan {
+                Tan::Stick => StickState::Stick,
+                Tan::Slip(_) => StickState::Slip,
+                _ => StickState::None,
+            },
+        };
+        let q = [s[X], s[Y], s[4], s[6]];
+        let v = [s[GX], s[GY], s[W1], s[W2]];
+        tr.push_pair(self.t, &q, &v, &f, s[XI]);
+    }
+
+    fn finish(mut self, stop: StopReason) -> Record {
+        let s = self.s;
+        let mut rec = self.rec;
+        rec.stop = stop;
+        rec.steps = self.steps;
+        rec.contact_time = self.t;
+        rec.work_normal = s[WN];
+        rec.work_friction = s[WT];
+        let (q, v) = ([s[X], s[Y], s[4], s[6]], [s[GX], s[GY], s[W1], s[W2]]);
+        let reach = self.ode.geometry.touch_distance();
+        close_pair(&mut rec, self.ode.pair, &self.init, (&q, &v), reach);
+        rec.err_est = Some(self.error_estimate());
+        self.rec = rec;
+        self.rec
+    }
+
+    /// `err_est` from the accumulated local errors of g and the spins: the largest over e_N,
+    /// e_T, e_kin and both spins in units of v / r.
+    fn error_estimate(&self) -> f64 {
+        let (acc, init) = (&self.acc, &self.init);
+        let v = init.vx.hypot(init.vy);
+        let e_t = if init.vx != 0.0 {
+            acc[GX] / init.vx.abs()
+        } else {
+            0.0
+        };
+        let e_n = acc[GY] / init.vy.abs();
+        let e_kin = acc[GX].hypot(acc[GY]) / v;
+        let spin1 = acc[W1] * self.ode.pair.particle.r / v;
+        let spin2 = acc[W2] * self.ode.pair.r2 / v;
+        ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin1).max(spin2)
+    }
+}
+
+/// The step size controller's factor for a step with scaled error `err`: 0.9 err^(-1/5)
+/// within [0.2, 5].
+fn step_factor(err: f64) -> f64 {
+    (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
+}
+
+/// The error scale of each state component, from the impact's own scales (as the plate's
+/// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what
+/// they cover in t_c / pi; the spring the elongation holding the contact point's energy;
+/// works the energy).
+fn error_scales(
+    pair: &Pair,
+    init: &Initial,
+    (speed, energy): (f64, f64),
+    t_est: f64,
+    depth: f64,
+) -> State {
+    let (r1, r2) = (pair.particle.r, pair.r2);
+    let floor = |x: f64| x.clamp(1e-3 * speed, speed);
+    let t_c = t_est / PI;
+    let (vx, vy, spin) = (floor(init.vx.abs()), floor(init.vy.abs()), floor(speed));
+    let law = &pair.law;
+    let m_t = 1.0 / (1.0 / law.mass + law.r * law.r / law.inertia);
+    let (k_xi, rate, _) = law.spring(depth);
+    let k_t = k_xi * rate;
+    let xi = if k_t > 0.0 {
+        vx * (m_t / k_t).sqrt() * rate
+    } else {
+        f64::INFINITY
+    };
+    [
+        vx * t_c,
+        vy * t_c,
+        vx,
+        vy,
+        spin / r1 * t_c,
+        spin / r1,
+        spin / r2 * t_c,
+        spin / r2,
+        xi,
+        energy,
+        energy,
+    ]
+}

@@ -1,0 +1,120 @@
+//! The pair's largest overlap from the energy balance of its undamped normal law, and the
+//! refusal of overlaps past half a body's radius.
+
+use crate::error::{Error, Result};
+use crate::geometry::pair::{DiscPair, PairGeometry};
+use crate::model::{Initial, NormalLaw, Pair};
+
+/// The pair's largest overlap from the energy balance of its undamped normal law,
+/// refused where a body's cap would pass half its radius (as r / 2 on the plate).
+pub(super) fn estimate_max_overlap(pair: &Pair, init: &Initial) -> Result<f64> {
+    let law = &pair.law;
+    let (r1, r2) = (pair.particle.r, pair.r2);
+    let ke = 0.5 * pair.m_star * init.vy * init.vy;
+    let hi = largest_overlap(r1, r2);
+    let potential = |delta: f64| overlap_potential(pair, delta);
+    let (u_hi, _) = potential(hi);
+    if u_hi < ke {
+        let stiff = match law.scene.normal_law {
+            NormalLaw::Linear { kn, .. } => format!("kn = {:e} Pa", 2.0 * kn),
+            _ => format!("E = {:e} Pa", pair.particle.scene.e_modulus),
+        };
+        return Err(Error::invalid(
+            "v",
+            init.vx.hypot(init.vy),
+            format!(
+                "small enough that each body's estimated overlap stays below half its radius at \
+                 {stiff} (normal kinetic energy {ke:e} J exceeds the elastic energy there: lower \
+                 v or raise the modulus)"
+            ),
+        ));
+    }
+    Ok(solve_depth(potential, ke, hi))
+}
+
+/// The overlap delta at which a body's cap reaches half its radius first (bisection on the
+/// caps' closed form).
+fn largest_overlap(r1: f64, r2: f64) -> f64 {
+    let capped = |delta: f64| {
+        let d = r1 + r2 - delta;
+        let half = 0.5 * delta / d;
+        (half * (r2 + d - r1) / r1).max(half * (r1 + d - r2) / r2) > 0.5
+    };
+    let (mut lo, mut hi) = (0.0, r1.min(r2));
+    for _ in 0..80 {
+        let mid = 0.5 * (lo + hi);
+        if capped(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    lo
+}
+
+/// The undamped normal law's potential at overlap `delta` and its rate (the elastic force).
+fn overlap_potential(pair: &Pair, delta: f64) -> (f64, f64) {
+    let law = &pair.law;
+    match law.scene.normal_law {
+        NormalLaw::Area => {
+            // (E* / L) times the integral of the lens area over the overlap (Gauss-Legendre
+            // on delta t^2, t in [0, 1]: the area grows like delta^(3/2)).
+            let (r1, r2) = (pair.particle.r, pair.r2);
+            let lens = DiscPair { r1, r2 };
+            let area = |s: f64| lens.overlap(r1 + r2 - s).map_or(0.0, |o| o.area);
+            let k = law.scene.e_modulus / law.length;
+            let integral: f64 = GAUSS_8
+                .iter()
+                .map(|&(x, w)| {
+                    let t = 0.5 * (x + 1.0);
+                    0.5 * w * area(delta * t * t) * 2.0 * delta * t
+                })
+                .sum();
+            (k * integral, k * area(delta))
+        }
+        NormalLaw::Linear { kn, .. } => (0.5 * kn * delta * delta, kn * delta),
+        NormalLaw::Hertz { .. } => {
+            let k = law.hertz.map_or(0.0, |h| h.k);
+            let f = k * delta * delta.sqrt();
+            (0.4 * f * delta, f)
+        }
+    }
+}
+
+/// Gauss-Legendre nodes and weights on [-1, 1], 8 points.
+const GAUSS_8: [(f64, f64); 8] = [
+    (-0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+    (-0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (-0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
+    (-0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.183_434_642_495_649_8, 0.362_683_783_378_362),
+    (0.525_532_409_916_329_0, 0.313_706_645_877_887_3),
+    (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
+    (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
+];
+
+/// The overlap at which `potential` reaches `energy`, below `hi` (where it is above): Newton
+/// on log potential against log depth, bisecting where a step leaves the bracket.
+fn solve_depth(potential: impl Fn(f64) -> (f64, f64), energy: f64, hi: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, hi);
+    let mut depth = hi;
+    for _ in 0..200 {
+        let (p, dp) = potential(depth);
+        if p > energy {
+            hi = depth;
+        } else {
+            lo = depth;
+        }
+        let next = depth * ((energy / p).ln() / (depth * dp / p)).exp();
+        let next = if next > lo && next < hi && next.is_finite() {
+            next
+        } else {
+            0.5 * (lo + hi)
+        };
+        if (next - depth).abs() <= 1e-14 * depth || next == lo || next == hi {
+            return next;
+        }
+        depth = next;
+    }
+    depth
+}

@@ -1,0 +1,236 @@
+//! The pair's ODE on the adaptive path: the state, the modes of a piece (clip, stick, slip), the
+//! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
+
+use crate::geometry::pair::PairGeometry;
+use crate::geometry::Overlap;
+use crate::law::contact::NormalForce;
+use crate::model::Pair;
+
+/// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
+/// tangential force.
+pub(super) const NS: usize = 11;
+pub(super) type State = [f64; NS];
+pub(super) const X: usize = 0;
+pub(super) const Y: usize = 1;
+pub(super) const GX: usize = 2;
+pub(super) const GY: usize = 3;
+pub(super) const W1: usize = 5;
+pub(super) const W2: usize = 7;
+pub(super) const XI: usize = 8;
+pub(super) const WN: usize = 9;
+pub(super) const WT: usize = 10;
+
+/// The tangential law of a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Tan {
+    /// mu = 0.
+    None,
+    Stick,
+    /// F_t = mu F_n s, s = +-1.
+    Slip(f64),
+    /// The normal force is clipped: no tangential force.
+    Free,
+}
+
+/// The law that holds in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    pub(super) clipped: bool,
+    pub(super) tan: Tan,
+}
+
+/// The switches that end a piece; each event function is <= 0 while the piece's mode holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Event {
+    Separate,
+    ClipOn,
+    ClipOff,
+    ToSlip,
+    ToStick,
+}
+
+/// What one evaluation yields besides the derivative.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Eval {
+    /// F_el + F_d before the clip, and its parts as they act (clipped by the mode).
+    pub(super) f_raw: f64,
+    pub(super) f_el: f64,
+    pub(super) f_d: f64,
+    pub(super) f_t: f64,
+    pub(super) trial: f64,
+    pub(super) v_t: f64,
+    pub(super) depth: f64,
+    pub(super) area: f64,
+    pub(super) n: [f64; 2],
+    pub(super) arms: [f64; 2],
+}
+
+/// The pair's ODE.
+pub(super) struct PairOde<'a, G> {
+    pub(super) pair: &'a Pair,
+    pub(super) geometry: G,
+    pub(super) mu: f64,
+    pub(super) normal: NormalForce,
+    /// 1 / m*, 1 / I1, 1 / I2.
+    pub(super) inv: [f64; 3],
+    /// The forward difference's time step for the slip -> stick rates.
+    pub(super) fd_step: f64,
+}
+
+impl<G: PairGeometry> PairOde<'_, G> {
+    /// The derivative `ds` of state `s` in mode `m`, and the forces.
+    pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
+        let law = &self.pair.law;
+        let d = s[X].hypot(s[Y]);
+        let n = [s[X] / d, s[Y] / d];
+        let t = [n[1], -n[0]];
+        let g = [s[GX], s[GY]];
+        let (g_n, g_t) = (n[0] * g[0] + n[1] * g[1], t[0] * g[0] + t[1] * g[1]);
+        let mut e = Eval {
+            n,
+            depth: self.geometry.touch_distance() - d,
+            ..Eval::default()
+        };
+        if let Some(o) = self.geometry.overlap(d) {
+            let frame = Overlap {
+                area: o.area,
+                chord: o.chord,
+                depth: o.depth,
+                ..Overlap::default()
+            };
+            let (f_el, f_d, _, _) = self.normal.on_overlap(&frame, &[g_t, g_n, 0.0]);
+            e.f_raw = f_el + f_d;
+            if !m.clipped {
+                (e.f_el, e.f_d) = (f_el, f_d);
+            }
+            e.area = o.area;
+            e.arms = [o.arm1, d - o.arm1];
+        }
+        e.v_t = g_t + e.arms[0] * s[W1] + e.arms[1] * s[W2];
+        let (k_xi, rate, ct) = law.spring(e.depth.max(0.0));
+        e.trial = -k_xi * s[XI] - ct * e.v_t;
+        let f_n = e.f_el + e.f_d;
+        ds[XI] = 0.0;
+        e.f_t = match m.tan {
+            Tan::Stick if e.depth > 0.0 => {
+                let shrink = if g_n > 0.0 {
+                    law.history_shrink(e.depth, -g_n)
+                } else {
+                    0.0
+                };
+                ds[XI] = rate * e.v_t + shrink * s[XI];
+                e.trial
+            }
+            Tan::Slip(sg) => sg * self.mu * f_n,
+            _ => 0.0,
+        };
+        let f = [f_n * n[0] + e.f_t * t[0], f_n * n[1] + e.f_t * t[1]];
+        ds[X] = g[0];
+        ds[Y] = g[1];
+        ds[GX] = f[0] * self.inv[0];
+        ds[GY] = f[1] * self.inv[0];
+        ds[4] = s[W1];
+        ds[W1] = e.arms[0] * e.f_t * self.inv[1];
+        ds[6] = s[W2];
+        ds[W2] = e.arms[1] * e.f_t * self.inv[2];
+        ds[WN] = f_n * g_n;
+        ds[WT] = e.f_t * e.v_t;
+        e
+    }
+
+    pub(super) fn eval_new(&self, m: &Mode, s: &State) -> (State, Eval) {
+        let mut ds = [0.0; NS];
+        let e = self.eval(m, s, &mut ds);
+        (ds, e)
+    }
+
+    /// The events that can end a piece of mode `m`.
+    pub(super) fn candidates(&self, m: &Mode) -> impl Iterator<Item = Event> {
+        let clip = if m.clipped {
+            Event::ClipOff
+        } else {
+            Event::ClipOn
+        };
+        let tan = match m.tan {
+            Tan::Stick => Some(Event::ToSlip),
+            Tan::Slip(_) => Some(Event::ToStick),
+            _ => None,
+        };
+        [Some(Event::Separate), Some(clip), tan]
+            .into_iter()
+            .flatten()
+    }
+
+    /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
+    pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        let e = self.eval_new(m, s).1;
+        match ev {
+            Event::Separate => -e.depth,
+            Event::ClipOn => -e.f_raw,
+            Event::ClipOff => e.f_raw,
+            Event::ToSlip => {
+                // Past the cone by a margin of 1e-9 of it: a spring just set on the cone (at a
+                // slip -> stick switch) is not taken back by round-off.
+                let cap = self.mu * e.f_raw.max(0.0);
+                e.trial.abs() - cap - 1e-9 * (e.trial.abs() + cap)
+            }
+            Event::ToStick => self.to_stick_value(m, s, &e),
+        }
+    }
+
+    /// Slip -> stick: mu dF_n/dt - s dF_trial/dt, positive where sticking would move the
+    /// trial force inside the cone: both rates taken by a forward difference along the motion
+    /// the contact would have if it stuck now (the spring at its slipping elongation, moving
+    /// as in stick), so that a slip the damper reverses ends, and the switch is consistent.
+    fn to_stick_value(&self, m: &Mode, s: &State, e: &Eval) -> f64 {
+        let Tan::Slip(sg) = m.tan else {
+            return f64::NEG_INFINITY;
+        };
+        if e.depth <= 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        let h = self.fd_step;
+        let mut held = *s;
+        held[XI] = self.slipping_xi(e);
+        let stick = Mode {
+            tan: Tan::Stick,
+            ..*m
+        };
+        let (d_stick, now) = self.eval_new(&stick, &held);
+        let ahead: State = std::array::from_fn(|i| held[i] + h * d_stick[i]);
+        let later = self.eval_new(&stick, &ahead).1;
+        let dfn = (later.f_raw - now.f_raw) / h;
+        let dtrial = (later.trial - now.trial) / h;
+        let value = self.mu * dfn - sg * dtrial;
+        // Past its root by a margin of 1e-9 of its terms, so that the spring starts inside.
+        value - 1e-9 * (self.mu * dfn.abs() + dtrial.abs())
+    }
+
+    /// The spring's elongation that carries the slipping force: -(F_t + c_t v_t) / k_xi.
+    pub(super) fn slipping_xi(&self, e: &Eval) -> f64 {
+        let (k_xi, _, ct) = self.pair.law.spring(e.depth.max(0.0));
+        -(e.f_t + ct * e.v_t) / k_xi
+    }
+
+    /// The tangential mode when the normal force acts: stick if the spring's trial force is
+    /// inside the cone, else slip in its direction.
+    pub(super) fn initial_tan(&self, m: &Mode, s: &State) -> Tan {
+        if self.mu == 0.0 {
+            return Tan::None;
+        }
+        let e = self
+            .eval_new(
+                &Mode {
+                    tan: Tan::Stick,
+                    ..*m
+                },
+                s,
+            )
+            .1;
+        if e.trial.abs() <= self.mu * e.f_raw.max(0.0) {
+            Tan::Stick
+        } else {
+            Tan::Slip(e.trial.signum())
+        }
+    }
+}
