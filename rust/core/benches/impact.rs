@@ -8,6 +8,7 @@
 //! only the summary (the filter matches no criterion benchmark). Targets (issues 3 and 4): <= 50 ns per step for the exact disc,
 //! <= 1 us per step for the 120-gon. The Hertz-Mindlin sphere (Chung & Ooi's Test 4 at 45 deg,
 //! its own initial state) is measured in the same run; goal (issue 16): within 1.5x the disc.
+//! So are two preset discs colliding (issue 28): a pair's step within 1.5x the plate's.
 //!
 //! The group `impact_overhead` times what every impact pays outside its steps (issue 13: a few
 //! microseconds at most): `Model::new` (validation and the time-step bound) and the estimate of
@@ -17,7 +18,7 @@
 
 use criterion::{Criterion, Throughput};
 use restitution_core::{
-    estimate_max_depth, simulate, Initial, Integrator, Model, NormalLaw, Scene, Shape,
+    estimate_max_depth, simulate, Initial, Integrator, Model, NormalLaw, Partner, Scene, Shape,
 };
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -52,8 +53,19 @@ fn configurations() -> Vec<(&'static str, Scene, Initial)> {
         },
         ..Scene::default()
     };
+    // Two preset discs (issue 28: a pair's step within 1.5x the plate's): the relative speed
+    // twice the plate's, so that the contact is the plate's (identical bodies at +-v).
+    let pair = Scene {
+        partner: Some(Partner::of(Shape::Disc { r: 0.01 })),
+        ..disc.clone()
+    };
+    let unequal = Scene {
+        partner: Some(Partner::of(Shape::Disc { r: 0.02 })),
+        ..disc.clone()
+    };
     let p = paper_initial();
     let s = Initial::from_angle(3.9, 45.0, 0.0, 0.0);
+    let p2 = Initial::from_angle(2.0 * 0.0357, 45.0, 0.0, 0.0);
     let verlet = |scene: &Scene| Scene {
         integrator: Integrator::Verlet,
         ..scene.clone()
@@ -65,6 +77,9 @@ fn configurations() -> Vec<(&'static str, Scene, Initial)> {
         ("120gon_verlet", verlet(&gon), p),
         ("sphere_gear5", sphere.clone(), s),
         ("sphere_verlet", verlet(&sphere), s),
+        ("pair_gear5", pair.clone(), p2),
+        ("pair_verlet", verlet(&pair), p2),
+        ("pair2r_gear5", unequal, p2),
     ]
 }
 
@@ -95,7 +110,7 @@ fn bench_overhead(c: &mut Criterion) {
         group.bench_function(format!("{shape}_model_new"), |b| {
             b.iter(|| Model::new(black_box(&scene)).expect("valid"))
         });
-        if shape != "sphere" {
+        if shape != "sphere" && shape != "pair" {
             let model = Model::new(&scene).expect("valid");
             group.bench_function(format!("{shape}_estimate_max_depth"), |b| {
                 b.iter(|| estimate_max_depth(black_box(&model), black_box(&p)).expect("valid"))

@@ -55,6 +55,18 @@ impl PairGeometry for DiscPair {
         if delta <= 0.0 {
             return None;
         }
+        if self.r1 == self.r2 {
+            // Two equal discs: the chord halves the overlap, the lens is two equal segments
+            // and its centroid lies on the chord (one segment computed, not two).
+            let h = 0.5 * delta;
+            let c = disc_segment_at(self.r1, self.r1 - h, h);
+            return Some(PairOverlap {
+                depth: delta,
+                area: 2.0 * c.area,
+                chord: c.chord,
+                arm1: 0.5 * d,
+            });
+        }
         let (h1, h2) = cap_depths(self.r1, self.r2, d, delta);
         // Each cap as the plate's segment of its disc (centre at height r - h over the chord):
         // its centroid lies `y - cy` beyond its own centre.

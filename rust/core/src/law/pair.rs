@@ -73,8 +73,11 @@ impl<'a, G: PairGeometry> PairContact<'a, G> {
     /// by `dt`.
     #[inline(always)]
     pub fn evaluate(&mut self, q: &Lanes, v: &Lanes, dt: f64) -> (Lanes, PairForces) {
-        let d = q[0].hypot(q[1]);
-        let n = [q[0] / d, q[1] / d];
+        // sqrt, not hypot: the centres' distance is never near the floats' limits, and
+        // hypot's care cost a fifth of a pair's step.
+        let d = (q[0] * q[0] + q[1] * q[1]).sqrt();
+        let inv_d = 1.0 / d;
+        let n = [q[0] * inv_d, q[1] * inv_d];
         let Some(o) = self.geometry.overlap(d) else {
             self.spring.reset();
             return (

@@ -139,7 +139,7 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
         if f.area > self.rec.max_area {
             self.rec.max_area = f.area;
         }
-        let depth = self.contact.geometry.touch_distance() - q[0].hypot(q[1]);
+        let depth = self.contact.geometry.touch_distance() - (q[0] * q[0] + q[1] * q[1]).sqrt();
         if depth > self.rec.max_depth {
             self.rec.max_depth = depth;
         }
