@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 NAME = "validate"
-HELP = ("the Hertz-Mindlin sphere against Chung & Ooi (2011) Tests 2, 3, 4, 6 and Kharaz et al. (2001): "
+HELP = ("the Hertz-Mindlin sphere against Chung & Ooi (2011) Tests 1, 2, 3, 4, 6, 7, 8 and Kharaz et al. (2001): "
         "tables, figures with the published curves, report.md")
 
 

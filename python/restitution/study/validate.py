@@ -1,7 +1,8 @@
 """``restitution validate``: the Hertz-Mindlin sphere against the Chung & Ooi (2011) benchmark
 and Kharaz, Gorham & Salman's (2001) experiments (docs/model.md, section 14).
 
-Runs Tests 2, 3, 4 and 6 of the benchmark with its published inputs, and Test 4's alumina on
+Runs Tests 1, 2, 3, 4, 6, 7 and 8 of the benchmark with its published inputs (the particle-particle
+Tests 1, 7 and 8 in :mod:`restitution.study.validate_pairs`), and Test 4's alumina on
 the glass anvil of the experiments; writes one Parquet table per test, the benchmark's figures
 with the published curves (:mod:`restitution.study.published`) and rigid-body theory
 (kappa = 2/5) overlaid, and ``report.md`` with the deviations. Test 4 runs once more per
@@ -387,11 +388,11 @@ def _markdown(df: pl.DataFrame) -> str:
 def write_validation(out: Path) -> list[Path]:
     """Runs every test and writes tables, figures and ``report.md`` to ``out``; returns the paths."""
     out.mkdir(parents=True, exist_ok=True)
+    paths = _write_pairs(out)
     t2, traces = test2()
     t3, t4, t6, t4h = test3(), test4(), test6(), test4_histories()
     dev, hist_dev = deviations(t4, t6), history_deviations(t4h)
     verdict = history_verdict(hist_dev)
-    paths = []
     for name, df in (("test2", t2), ("test3", t3), ("test4", t4), ("test6", t6), ("deviations", dev),
                      ("test4_histories", t4h), ("history_deviations", hist_dev), ("history_verdict", verdict)):
         paths.append(out / f"{name}.parquet")
@@ -409,5 +410,24 @@ def write_validation(out: Path) -> list[Path]:
         paths.append(out / name)
         draw(paths[-1])
     paths.append(out / "report.md")
-    paths[-1].write_text(report(t2, t3, t4, dev, hist_dev, verdict))
+    pair_lines = (out / "pairs.md").read_text()
+    paths[-1].write_text(report(t2, t3, t4, dev, hist_dev, verdict) + "\n\n" + pair_lines)
+    (out / "pairs.md").unlink()
+    return paths
+
+
+def _write_pairs(out: Path) -> list[Path]:
+    """Tests 1, 7 and 8 (two spheres; :mod:`restitution.study.validate_pairs`): their tables and
+    figures, and their part of the report in ``pairs.md`` (joined to ``report.md`` after)."""
+    from . import validate_pairs as vp
+
+    t1, traces = vp.test1()
+    t7, t8 = vp.test7(), vp.test8()
+    paths = []
+    for name, df in (("test1", t1), ("test7", t7), ("test8", t8)):
+        paths.append(out / f"{name}.parquet")
+        df.write_parquet(paths[-1])
+    paths += [out / "test1.png", out / "test8.png"]
+    vp.figures(traces, t8, paths[-2], paths[-1])
+    (out / "pairs.md").write_text("\n".join(vp.report_lines(t1, t7, t8)))
     return paths
