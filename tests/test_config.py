@@ -68,7 +68,7 @@ BAD = [
     ("[axes]\ntheta_deg = 30\nn = [0, 2]", "axes.n: case 1: require `n` an integer >= 3, or 0 for an exact disc (found 2.0)"),
     ("[axes]\ntheta_deg = 30\nn = [0.5]", "axes.n: require integers: 0 (exact disc) or >= 3 (found 0.5)"),
     ("[axes]\ntheta_deg = 30\nmu = []", "axes.mu: require at least one value"),
-    ("[axes]\ntheta_deg = 30\ndt_factor = [0.6]",
+    ("[axes]\ntheta_deg = 30\ndt_factor = [0.6]\n[scene]\nintegrator = \"gear5\"",
      f"axes.dt_factor: case 0: require `dt_factor` in (0, {rs.MAX_DT_FACTOR['gear5']}] for the gear5 integrator"),
     ("[axes]\ntheta_deg = 30\ndt_factor = [20]\n[scene]\nintegrator = \"adaptive\"",
      "axes.dt_factor: case 0: require `dt_factor` in (0, 10] for the adaptive integrator"),

@@ -150,12 +150,14 @@ def test_defaults_are_the_paper_preset_of_model_md() -> None:
     s = rs.Scene()
     assert s.shape == rs.Disc(r=0.01)
     assert (s.rho, s.E, s.gamma, s.gamma_t, s.mu, s.v) == (2500.0, 1e7, 0.33, 0.5, 0.5, 0.0357)
-    # The study's Gear-5 at its 0.01 t_ref (dt_factor None: the integrator's default).
-    assert (s.integrator, s.dt_factor, s.tol, s.normal_law, s.inertia) == ("gear5", None, 1e-6, "area", "shape")
+    # The adaptive path to tol 1e-6 (dt_factor None: its default largest step, 1 t_ref).
+    assert (s.integrator, s.dt_factor, s.tol, s.normal_law, s.inertia) == ("adaptive", None, 1e-6, "area", "shape")
+    # Scene.paper(): the study's 120-gon and the study's method, Gear-5 at its 0.01 t_ref.
     p = rs.Scene.paper()
-    assert p.shape == rs.RegularPolygon(r=0.01, n=120, phi0_deg=0.0)
-    assert p.replace(shape=rs.Disc(r=0.01)) == s
-    assert rs.Scene.paper(shape=rs.Disc(r=0.01), mu=1.0) == s.replace(mu=1.0)
+    assert p.shape == rs.RegularPolygon(r=0.01, n=120, phi0_deg=0.0) and p.integrator == "gear5"
+    assert p.replace(shape=rs.Disc(r=0.01)) == s.replace(integrator="gear5")
+    assert rs.Scene.paper(shape=rs.Disc(r=0.01), mu=1.0) == s.replace(mu=1.0, integrator="gear5")
+    assert rs.Scene.paper(integrator="adaptive").integrator == "adaptive"
 
 
 # --- Shapes -----------------------------------------------------------------------------------
@@ -285,7 +287,7 @@ def test_sweep_refuses_2d_axes(disc_scene: rs.Scene, name: str) -> None:
     ("r", [0.01, -0.01], "> 0"),
     ("kt", [0.0], "> 0"),
     ("dt_factor", [0.0], "(0, "),
-    ("dt_factor", [0.01, 1e3], "stability bound"),
+    ("dt_factor", [0.01, 1e3], "(0, 10] for the adaptive integrator"),
     ("n", [6, 2], ">= 3"),
     ("integrator", ["gear5", "rk4"], "gear5"),
     ("normal_law", ["hooke"], "area"),

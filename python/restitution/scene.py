@@ -29,10 +29,11 @@ class Scene:
     """An impact scene: particle, material, contact law and numerics (SI units, per unit depth;
     per particle for a ``Sphere``).
 
-    ``Scene()`` is the study's preset on an exact disc, :meth:`Scene.paper` the preset on the
-    study's 120-gon, both integrated by the study's Gear-5 (``integrator="adaptive"`` is cheaper
-    at equal accuracy: see ``integrator``). Every field is validated: bad values raise
-    ``ValueError`` naming the parameter and its allowed range.
+    ``Scene()`` is the study's preset on an exact disc, integrated by the adaptive path to
+    ``tol = 1e-6`` (every record carries its error estimate ``err_est``); :meth:`Scene.paper` is
+    the preset on the study's 120-gon with the study's own method, Gear-5 at dt = 0.01 t_ref.
+    Every field is validated: bad values raise ``ValueError`` naming the parameter and its allowed
+    range.
 
     Examples
     --------
@@ -58,12 +59,12 @@ class Scene:
     """Coulomb friction coefficient (0: no tangential force)."""
     v: float = 0.0357
     """Impact speed (m/s)."""
-    integrator: str = "gear5"
-    """"gear5" (the default: the study's fixed step), "adaptive" (Dormand-Prince 5(4) with the
-    contact's switches located, to the accuracy ``tol``, each record estimating its error in
-    ``err_est``: cheaper than gear5 at equal accuracy, but slow on fast-spinning fine polygons),
-    "verlet" (cheap fixed step; not with the linear law on a polygon) or "reference" (the adaptive
-    path at its tightest setting: accurate to about 1e-10)."""
+    integrator: str = "adaptive"
+    """"adaptive" (the default: Dormand-Prince 5(4) with the contact's switches located, to the
+    accuracy ``tol``, each record estimating its error in ``err_est``; its step budget bounds any
+    impact to about a second, past which it ends ``timed_out``), "gear5" (the study's fixed step,
+    ``Scene.paper()``'s), "verlet" (cheap fixed step; not with the linear law on a polygon) or
+    "reference" (the adaptive path at its tightest setting: accurate to about 1e-10)."""
     dt_factor: float | None = None
     """gear5 / verlet: dt = dt_factor * t_ref, at most ``max_dt_factor`` (the integrator's stability
     bound for this scene's stiffness and damping: 0.0702 for gear5, 0.105 for verlet on the preset).
@@ -195,7 +196,10 @@ class Scene:
 
     @classmethod
     def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:
-        """The study's preset (docs/model.md): a 120-gon of circumradius 0.01 m unless ``shape`` is given."""
+        """The study's preset and method (docs/model.md): a 120-gon of circumradius 0.01 m unless
+        ``shape`` is given, integrated by Gear-5 at dt = 0.01 t_ref as in the study (``changes``
+        may set another integrator)."""
+        changes = {"integrator": "gear5", **changes}
         return cls(shape=shape if shape is not None else RegularPolygon(r=0.01, n=120, phi0_deg=0.0), **changes)
 
     def replace(self, **changes: Any) -> Scene:

@@ -126,7 +126,7 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, partner_omeg
 
     >>> pair = rs.Scene(partner=rs.Disc(0.01))
     >>> a, b = rs.simulate(rs.Scene(), 90.0), rs.simulate(pair.replace(v=2 * pair.v), 90.0)
-    >>> abs(a.e_n - b.e_n) < 1e-12
+    >>> abs(a.e_n - b.e_n) < 3 * rs.Scene().tol  # each to its tolerance; Gear-5's to round-off
     True
     """
     if not isinstance(scene, Scene):

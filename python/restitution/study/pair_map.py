@@ -38,7 +38,7 @@ ZETA = -math.log(0.9) / math.sqrt(math.pi**2 + math.log(0.9) ** 2)
 def cases() -> list[tuple[str, Scene]]:
     """(label, scene) of the map: two preset discs, area or linear law (k_n = E), elastic or
     damped to e_N ~ 0.9 head-on, mu 0 or 0.5."""
-    base = Scene(partner=Disc(RADIUS), v=SPEED)
+    base = Scene(partner=Disc(RADIUS), v=SPEED, integrator="gear5")
     m_star = 0.5 * base.rho * math.pi * RADIUS**2
     kn = base.E
     # Per body kn, cn; in series k* = kn / 2, c* = cn / 2, and zeta = c* / (2 sqrt(k* m*)).

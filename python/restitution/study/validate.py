@@ -60,7 +60,7 @@ def sphere_scene(material: str, r: float, cor: float, mu: float, plate: tuple[fl
     e, nu, rho = MATERIALS[material]
     plate_e, plate_nu = plate if plate is not None else (None, None)
     return Scene(shape=Sphere(r=r), normal_law="hertz", E=e, nu=nu, rho=rho, cor=cor, mu=mu,
-                 plate_E=plate_e, plate_nu=plate_nu, **changes)
+                 plate_E=plate_e, plate_nu=plate_nu, **{"integrator": "gear5", **changes})
 
 
 def test2() -> tuple[pl.DataFrame, dict[str, pl.DataFrame]]:

@@ -40,7 +40,7 @@ def pair_scene(material: str, r: float, partner_r: float, **changes: object) -> 
     """Two Hertz-Mindlin spheres of one material (the partner's density may be changed)."""
     e, nu, rho = PAIR_MATERIALS[material]
     return Scene(shape=Sphere(r=r), partner=Sphere(r=partner_r), normal_law="hertz", E=e, nu=nu,
-                 rho=rho, **changes)  # type: ignore[arg-type]
+                 rho=rho, **{"integrator": "gear5", **changes})  # type: ignore[arg-type]
 
 
 def hertz_pair(material: str, r: float, v: float) -> dict[str, float]:

@@ -6,6 +6,7 @@ use restitution_core::{
     contact_steps, estimate_max_depth, run_cases, run_cases_cancellable, simulate,
     simulate_cancellable, simulate_with_trace_cancellable, Cancel, Case, Error, Initial,
     Integrator, Model, Scene, Shape, StopReason, BUDGET_CONTACTS, BUDGET_SLACK_STEPS,
+    MAX_ADAPTIVE_ATTEMPTS,
 };
 use std::time::Duration;
 
@@ -194,4 +195,47 @@ fn a_watched_token_asks_its_watch_at_each_poll_and_stops_when_told() {
             simulate(&scene, &init)
         );
     }
+}
+
+/// A 4096-gon spinning at 10^4 deg/s dropped head-on at 1e-6 m/s on a soft plate rattles from
+/// corner to corner (~900 000 steps resolved to the tolerance, 3 s, without a ceiling): on the
+/// adaptive path its default budget is capped at `MAX_ADAPTIVE_ATTEMPTS`, where it ends timed
+/// out with a finite record that gains no energy; `max_steps` lifts the cap.
+#[test]
+fn the_adaptive_paths_default_budget_has_a_ceiling_that_max_steps_lifts() {
+    let scene = Scene {
+        shape: Shape::regular_polygon(0.01, 4096).unwrap(),
+        mu: 1e-6,
+        gamma: 0.0,
+        e_modulus: 1e3,
+        integrator: Integrator::Adaptive,
+        ..Scene::default()
+    };
+    let init = Initial::from_angle(1e-6, 90.0, -1e4_f64.to_radians(), 332.3);
+    let model = Model::new(&scene).unwrap();
+    let n_c = contact_steps(&model, &init, estimate_max_depth(&model, &init).unwrap());
+    assert!(BUDGET_CONTACTS as f64 * n_c > MAX_ADAPTIVE_ATTEMPTS as f64, "N_c {n_c:e}");
+    let rec = simulate(&scene, &init).unwrap();
+    assert_eq!(rec.stop, StopReason::StepBudget);
+    assert_eq!(rec.step_budget, MAX_ADAPTIVE_ATTEMPTS);
+    assert!(rec.timed_out && rec.steps <= MAX_ADAPTIVE_ATTEMPTS);
+    assert!(rec.e_n.is_finite() && rec.energy_out.is_finite());
+    assert!(rec.energy_out <= rec.energy_in * (1.0 + 1e-6));
+    let lifted = Scene {
+        max_steps: Some(MAX_ADAPTIVE_ATTEMPTS + 1000),
+        ..scene.clone()
+    };
+    let rec = simulate(&lifted, &init).unwrap();
+    assert_eq!(rec.step_budget, MAX_ADAPTIVE_ATTEMPTS + 1000);
+    // Gear-5 keeps its uncapped budget: the cap is the adaptive path's.
+    let gear5 = Model::new(&Scene {
+        integrator: Integrator::Gear5,
+        ..scene
+    })
+    .unwrap();
+    let n_gear5 = contact_steps(&gear5, &init, estimate_max_depth(&gear5, &init).unwrap());
+    assert_eq!(
+        restitution_core::default_step_budget(&gear5, &init).unwrap(),
+        (BUDGET_CONTACTS as f64 * n_gear5.ceil()) as u64 + BUDGET_SLACK_STEPS
+    );
 }

@@ -2,6 +2,7 @@
 //! segment, convex polygons clipped by the half-plane, and the general convex-convex
 //! intersection through parry for any convex obstacle.
 
+pub mod chain;
 pub mod disc;
 pub mod overlap;
 pub mod pair;

@@ -221,6 +221,17 @@ impl Shape {
         }
     }
 
+    /// The most the lowest point's height changes per radian of turn, |d touch_height / d phi|
+    /// (m): the world x of the lowest vertex, at most [`Polygon::lowest_arm`] (r sin(pi / n)
+    /// for a regular n-gon); zero for a disc or sphere. A flight's spin brings the particle to
+    /// the plate no faster than this times |omega|.
+    pub fn touch_arm(&self) -> f64 {
+        match self {
+            Shape::Disc { .. } | Shape::Sphere { .. } => 0.0,
+            Shape::Polygon(p) => p.lowest_arm,
+        }
+    }
+
     /// Overlap with the plate y <= 0 for a centre of mass at height `y` and orientation `phi`;
     /// `None` when the particle does not reach below y = 0.
     #[inline]

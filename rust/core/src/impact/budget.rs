@@ -32,6 +32,14 @@ pub const MAX_STEPS_PER_CONTACT: f64 = 4e6;
 /// contacts (jumped over, each advance counted as a step).
 pub const BUDGET_CONTACTS: u64 = 200;
 
+/// The most attempts (rejected steps included) the adaptive path's default budget allows one
+/// impact: about 0.8 s of one core at its slowest steps measured (3.3 us, a 4096-gon spinning
+/// at 10^4 deg/s, one corner after another; `benchmarks/extremes_bench.py`). Its contacts'
+/// own estimate can be far larger: a fine polygon dropped slowly with a fast spin rattles on
+/// its corners through 10^5 ... 10^6 contacts, each resolved to the tolerance. Such an impact
+/// ends as timed out rather than running for seconds; `Scene::max_steps` lifts the ceiling.
+pub const MAX_ADAPTIVE_ATTEMPTS: u64 = 250_000;
+
 /// Steps every budget has on top of its multiple of N_c (events, a few re-contacts of a
 /// contact with very few steps).
 pub const BUDGET_SLACK_STEPS: u64 = 10_000;
@@ -66,11 +74,16 @@ pub fn reference_contact_steps(
     t_est / h_max + 16.0 * tol.powf(-0.2) + turned
 }
 
-/// A step budget for N_c = `n`: `BUDGET_CONTACTS n + BUDGET_SLACK_STEPS` unless
-/// `Scene::max_steps` is set.
+/// A step budget for N_c = `n`: `BUDGET_CONTACTS n + BUDGET_SLACK_STEPS`, at most
+/// [`MAX_ADAPTIVE_ATTEMPTS`] on the adaptive path, unless `Scene::max_steps` is set.
 pub fn budget_for(model: &Model, n: f64) -> u64 {
     model.scene.max_steps.unwrap_or_else(|| {
-        (BUDGET_CONTACTS as f64 * n.ceil()).min(1e15) as u64 + BUDGET_SLACK_STEPS
+        let budget = (BUDGET_CONTACTS as f64 * n.ceil()).min(1e15) as u64 + BUDGET_SLACK_STEPS;
+        if model.scene.integrator == Integrator::Adaptive {
+            budget.min(MAX_ADAPTIVE_ATTEMPTS)
+        } else {
+            budget
+        }
     })
 }
 

@@ -419,7 +419,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         let geometry = &self.contact.geometry;
         let gap = |t: f64| -geometry.depth(q[1] + v[1] * t, q[2] + v[2] * t);
         let left = self.limits.max_steps.saturating_sub(self.steps);
-        let (jump, advances) = flight::jump(gap, q[1], &v, self.model.r, dt, left);
+        let (jump, advances) = flight::jump(gap, q[1], &v, (self.model.r, self.model.r), dt, left);
         let (t_jump, done) = match jump {
             flight::Jump::Stay => return false,
             flight::Jump::To(t) => (t, false),

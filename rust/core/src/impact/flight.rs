@@ -28,16 +28,19 @@ pub(crate) enum Jump {
 
 /// Jumps a free flight from height `y` with velocity `v` (`gap(t)`: the height of the lowest
 /// point after `t`), at most `max_advances` advances; returns where it ends and the advances
-/// used.
+/// used. `r` is the circumradius; `arm` bounds how fast the spin lowers the lowest point
+/// (|d touch_height / d phi| <= arm: r always, [`Shape::touch_arm`] at best).
+///
+/// [`Shape::touch_arm`]: crate::geometry::Shape::touch_arm
 pub(crate) fn jump(
     gap: impl Fn(f64) -> f64,
     y: f64,
     v: &Dof,
-    r: f64,
+    (r, arm): (f64, f64),
     dt: f64,
     max_advances: u64,
 ) -> (Jump, u64) {
-    let rate = v[1].abs() + r * v[2].abs();
+    let rate = v[1].abs() + arm * v[2].abs();
     let near = HANDOVER_STEPS * rate * dt;
     // Not approaching, and the circumscribed circle already clear (or no motion at all):
     // nothing can ever reach the plate.

@@ -11,7 +11,8 @@ use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::record::TIMEOUT_CONTACT_TIMES;
 use crate::integrate::dopri::root_error_ratio;
 use crate::law::NormalForce;
-use crate::model::{Initial, Model, NormalLaw};
+use crate::geometry::Shape;
+use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
 
 /// Smallest error scale of a velocity component, relative to the impact's speed.
@@ -143,6 +144,16 @@ impl Reference<'_> {
     }
 }
 
+/// The polygon whose long held runs are summed (`law.rs`, [`super::law::LONG_RUN`]): on the
+/// adaptive path under the area law.
+fn summed_polygon(model: &Model) -> Option<&crate::geometry::Polygon> {
+    let adaptive = model.scene.integrator == Integrator::Adaptive;
+    match &model.scene.shape {
+        Shape::Polygon(p) if adaptive && model.scene.normal_law == NormalLaw::Area => Some(p),
+        _ => None,
+    }
+}
+
 /// Steps from touch, in units of the step, beyond which [`root_error_ratio`] is 1 (1.1 at
 /// one step, 0.5 at two).
 const ROOT_REACH: f64 = 2.0;
@@ -211,6 +222,7 @@ impl<'a> Reference<'a> {
             normal: NormalForce::new(model),
             inv_mass: 1.0 / model.mass,
             inv_inertia: 1.0 / model.inertia,
+            summed: summed_polygon(model),
         };
         let lim = Limits {
             h_max,

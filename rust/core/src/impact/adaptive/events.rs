@@ -392,6 +392,7 @@ mod tests {
                             normal: ode.normal,
                             inv_mass: ode.inv_mass,
                             inv_inertia: ode.inv_inertia,
+                            summed: ode.summed,
                         };
                         fine.differenced_rates(&m, &s, &d, &e)
                     };

@@ -73,7 +73,7 @@ struct Run<'a, 't> {
     t: f64,
     /// The step to try next.
     h: f64,
-    /// Accepted steps, and attempts (rejected ones included).
+    /// Accepted steps, and attempts (rejected ones and those redone to a switch included).
     steps: u64,
     attempts: u64,
     /// Consecutive pieces of zero length (switches that fire at once).
@@ -219,7 +219,7 @@ impl<'a, 't> Run<'a, 't> {
         let v = [s[VX], s[VY], s[OM]];
         let gap = |t: f64| s[Y] + v[1] * t - shape.touch_height(s[PHI] + v[2] * t);
         let left = self.lim.max_steps.saturating_sub(self.attempts);
-        let (jump, advances) = flight::jump(gap, s[Y], &v, r, self.lim.h_max, left);
+        let (jump, advances) = flight::jump(gap, s[Y], &v, (r, shape.touch_arm()), self.lim.h_max, left);
         let (t_jump, done) = match jump {
             flight::Jump::Stay => return false,
             flight::Jump::To(t) => (t, false),
@@ -341,7 +341,10 @@ impl<'a, 't> Run<'a, 't> {
             Some((th, ev)) if th >= 1.0 => (step.y1, h, Some(ev), step.err, Some(&step.end)),
             Some((th, ev)) if th * h <= 0.0 => (self.s, 0.0, Some(ev), [0.0; NS], None),
             Some((th, ev)) => {
-                // Redo the step to the switch so the state there has full Runge-Kutta accuracy.
+                // Redo the step to the switch so the state there has full Runge-Kutta accuracy
+                // (a step's work, counted against the budget: a rattle of 10^5 short contacts
+                // is mostly steps redone to their touch and separation).
+                self.attempts += 1;
                 self.ode
                     .dp_step(&self.mode, &self.s, &self.k1, th * h, redo);
                 (redo.y1, th * h, Some(ev), redo.err, Some(&redo.end))
