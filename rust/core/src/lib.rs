@@ -40,7 +40,8 @@ pub use impact::adaptive::{simulate_reference, simulate_reference_with_trace, Re
 pub use impact::{
     contact_steps, default_step_budget, estimate_max_depth, simulate, simulate_cancellable,
     simulate_model, simulate_with_trace, simulate_with_trace_cancellable, Cell, Record, StopReason,
-    Trace, BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_ADAPTIVE_ATTEMPTS, MAX_STEPS_PER_CONTACT, RECORD_COLUMNS,
+    Trace, BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_ADAPTIVE_ATTEMPTS, MAX_STEPS_PER_CONTACT,
+    RECORD_COLUMNS,
 };
 pub use law::{plate_overlap, StickState};
 pub use model::{

@@ -214,7 +214,10 @@ fn the_adaptive_paths_default_budget_has_a_ceiling_that_max_steps_lifts() {
     let init = Initial::from_angle(1e-6, 90.0, -1e4_f64.to_radians(), 332.3);
     let model = Model::new(&scene).unwrap();
     let n_c = contact_steps(&model, &init, estimate_max_depth(&model, &init).unwrap());
-    assert!(BUDGET_CONTACTS as f64 * n_c > MAX_ADAPTIVE_ATTEMPTS as f64, "N_c {n_c:e}");
+    assert!(
+        BUDGET_CONTACTS as f64 * n_c > MAX_ADAPTIVE_ATTEMPTS as f64,
+        "N_c {n_c:e}"
+    );
     let rec = simulate(&scene, &init).unwrap();
     assert_eq!(rec.stop, StopReason::StepBudget);
     assert_eq!(rec.step_budget, MAX_ADAPTIVE_ATTEMPTS);

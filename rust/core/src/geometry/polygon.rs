@@ -500,18 +500,26 @@ mod tests {
             let p = Polygon::regular(0.01, n).unwrap();
             let exact = 0.01 * (PI / n as f64).sin();
             // To the rounding of 0.01-sized vertices 1.5e-5 apart.
-            assert!(close(p.lowest_arm, exact, 1e-9), "n {n}: {} vs {exact}", p.lowest_arm);
+            assert!(
+                close(p.lowest_arm, exact, 1e-9),
+                "n {n}: {} vs {exact}",
+                p.lowest_arm
+            );
         }
         // Any convex polygon: |d touch_height / d phi| <= arm at every orientation, and the
         // bound is reached (to the sampling's resolution).
-        let shape = Shape::convex_polygon(&[[0.0, 0.0], [0.03, 0.002], [0.02, 0.011], [-0.004, 0.007]])
-            .unwrap();
+        let shape =
+            Shape::convex_polygon(&[[0.0, 0.0], [0.03, 0.002], [0.02, 0.011], [-0.004, 0.007]])
+                .unwrap();
         let arm = shape.touch_arm();
         let (mut largest, h) = (0.0_f64, 1e-7);
         for k in 0..20_000 {
             let phi = k as f64 * (2.0 * PI / 20_000.0);
             let slope = (shape.touch_height(phi + h) - shape.touch_height(phi - h)) / (2.0 * h);
-            assert!(slope.abs() <= arm * (1.0 + 1e-6), "phi {phi}: {slope} > {arm}");
+            assert!(
+                slope.abs() <= arm * (1.0 + 1e-6),
+                "phi {phi}: {slope} > {arm}"
+            );
             largest = largest.max(slope.abs());
         }
         assert!(largest >= 0.99 * arm, "{largest} vs {arm}");

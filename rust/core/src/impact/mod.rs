@@ -19,7 +19,8 @@ pub use fixed::{tolerance, ERROR_TOLERANCE, TOLERANCE_FLOOR_ULPS};
 
 pub use budget::{
     budget_for, contact_steps, default_step_budget, reference_contact_steps, step_budget,
-    BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_ADAPTIVE_ATTEMPTS, MAX_STEPS_PER_CONTACT, MIN_DEPTH_ULPS,
+    BUDGET_CONTACTS, BUDGET_SLACK_STEPS, MAX_ADAPTIVE_ATTEMPTS, MAX_STEPS_PER_CONTACT,
+    MIN_DEPTH_ULPS,
 };
 pub use record::{
     estimate_max_depth, Cell, Record, StopReason, Trace, RECORD_COLUMNS, TIMEOUT_CONTACT_TIMES,

@@ -7,11 +7,11 @@ use super::piece::{Event, Mode, Touch};
 use super::{
     ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
 };
+use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::record::TIMEOUT_CONTACT_TIMES;
 use crate::integrate::dopri::root_error_ratio;
 use crate::law::NormalForce;
-use crate::geometry::Shape;
 use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
 

@@ -219,7 +219,8 @@ impl<'a, 't> Run<'a, 't> {
         let v = [s[VX], s[VY], s[OM]];
         let gap = |t: f64| s[Y] + v[1] * t - shape.touch_height(s[PHI] + v[2] * t);
         let left = self.lim.max_steps.saturating_sub(self.attempts);
-        let (jump, advances) = flight::jump(gap, s[Y], &v, (r, shape.touch_arm()), self.lim.h_max, left);
+        let (jump, advances) =
+            flight::jump(gap, s[Y], &v, (r, shape.touch_arm()), self.lim.h_max, left);
         let (t_jump, done) = match jump {
             flight::Jump::Stay => return false,
             flight::Jump::To(t) => (t, false),
