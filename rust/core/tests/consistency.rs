@@ -15,8 +15,8 @@
 mod common;
 
 use common::bounds::{
-    documented_angular_momentum_bound, documented_gain_bound, documented_residual_bound,
-    ADAPTIVE_TOL,
+    corners_in_pair, documented_angular_momentum_bound, documented_gain_bound,
+    documented_residual_bound, ADAPTIVE_TOL,
 };
 use restitution_core::{
     max_dt_factor, simulate, Error, InertiaModel, Initial, Integrator, Model, NormalLaw,
@@ -149,6 +149,10 @@ fn symmetry_tol(scene: &Scene) -> f64 {
         // Its error control ends near-simultaneous events at slightly different points in a
         // mirrored, turned or rescaled scene (measured: up to 2.3e-7 on a turned pentagon
         // through parry; 5e-8 for a rescaled disc at mu 1e3).
+        // A pair with corners: its corners' crossings and the contact's turns are not
+        // located, and at mu 1e3 the stick/slip switches among them land apart (measured up
+        // to 2.4e-5: a convex 7-gon on the big disc, exchanged).
+        Integrator::Reference | Integrator::Adaptive if corners_in_pair(scene) => 5e-5,
         Integrator::Reference | Integrator::Adaptive => 1e-6,
         // The same operations on differently rounded corners: round-off, amplified by the
         // stick/slip switches of frictional polygons (measured: up to 1.7e-8) and by the
@@ -180,10 +184,9 @@ fn groups(rec: &Record, v: f64, r: f64) -> [f64; 4] {
     ]
 }
 
-/// The same scene with r x 10, rho x 10 and E x 1000 (so v x 10 keeps E / (rho v^2)), and
-/// the linear law's kn and cn scaled alike (kn / E and cn / sqrt(kn m) fixed).
-fn scaled(scene: &Scene) -> Scene {
-    let shape = match &scene.shape {
+/// `shape` ten times as large.
+fn ten_times(shape: &Shape) -> Shape {
+    match shape {
         Shape::Disc { r } => Shape::Disc { r: 10.0 * r },
         Shape::Sphere { r } => Shape::Sphere { r: 10.0 * r },
         Shape::Polygon(p) => {
@@ -194,7 +197,13 @@ fn scaled(scene: &Scene) -> Scene {
                 .collect();
             Shape::convex_polygon(&v).unwrap()
         }
-    };
+    }
+}
+
+/// The same scene with r x 10, rho x 10 and E x 1000 (so v x 10 keeps E / (rho v^2)), and
+/// the linear law's kn and cn scaled alike (kn / E and cn / sqrt(kn m) fixed).
+fn scaled(scene: &Scene) -> Scene {
+    let shape = ten_times(&scene.shape);
     let mass = 10.0 * scene.rho * shape.area();
     // A stiffness scales like E times a length per unit depth (Pa), like E times an area for a
     // sphere (N/m): kn / (E r) is fixed for a sphere, kn / E for a 2D body.
@@ -207,11 +216,7 @@ fn scaled(scene: &Scene) -> Scene {
         law => law,
     };
     let partner = scene.partner.clone().map(|p| Partner {
-        shape: match p.shape {
-            Shape::Sphere { r } => Shape::Sphere { r: 10.0 * r },
-            Shape::Disc { r } => Shape::Disc { r: 10.0 * r },
-            other => other,
-        },
+        shape: ten_times(&p.shape),
         rho: p.rho.map(|x| 10.0 * x),
         e_modulus: p.e_modulus.map(|x| 1000.0 * x),
         nu: p.nu,
@@ -308,8 +313,28 @@ fn check_impact(
     );
     let worst = t.worst_gain.entry(key).or_insert(f64::NEG_INFINITY);
     *worst = worst.max(gain);
-    if gain > documented_gain_bound(scene) {
-        t.fail(format!("{what}: energy gained {gain:e}"));
+    // The area law between bodies with corners is not a potential's force (docs/model.md,
+    // 17.7): the model itself may gain or lose energy, and what an integrator adds is its gain
+    // beyond the reference's (the model's, to 1e-9).
+    let model_gain = if !(corners_in_pair(scene) && scene.normal_law == NormalLaw::Area) {
+        0.0
+    } else if scene.integrator == Integrator::Reference {
+        gain
+    } else {
+        let reference = Scene {
+            integrator: Integrator::Reference,
+            ..scene.clone()
+        };
+        match simulate(&reference, &init) {
+            Ok(r) => r.energy_out / r.energy_in - 1.0,
+            Err(e) => return t.fail(format!("{what}: reference refused: {e}")),
+        }
+    };
+    // (A damped or frictional model loses energy: nothing of its loss is credited.)
+    if gain - model_gain.max(0.0) > documented_gain_bound(scene) {
+        t.fail(format!(
+            "{what}: energy gained {gain:e} (the model's own {model_gain:e})"
+        ));
     }
     if !elastic {
         // Dampers and friction never create energy; the audit closes (docs/model.md: 1e-6).
@@ -351,6 +376,10 @@ fn check_symmetries(
     let tol = symmetry_tol(scene);
     let mirror = Scene {
         shape: mirrored(&scene.shape),
+        partner: scene.partner.clone().map(|p| Partner {
+            shape: mirrored(&p.shape),
+            ..p
+        }),
         ..scene.clone()
     };
     if let Ok(m) = simulate(&mirror, &mirror_init(init)) {
@@ -359,7 +388,8 @@ fn check_symmetries(
         }
     }
     if let Some(n) = regular_n(label) {
-        let turned = Initial::from_angle(v, theta, init.omega, phi0 + 360.0 / n as f64);
+        let turned = Initial::from_angle(v, theta, init.omega, phi0 + 360.0 / n as f64)
+            .with_partner(init.partner_omega, init.partner_phi0.to_degrees());
         if let Ok(m) = simulate(scene, &turned) {
             if let Some(d) = same_record(rec, &m, 1.0, v, r, tol) {
                 t.fail(format!("{what}: rotated by 360/{n}: {d}"));
@@ -410,9 +440,13 @@ fn check_pair(what: &str, scene: &Scene, init: &Initial, rec: &Record, t: &mut T
         }),
         ..scene.clone()
     };
+    // The picture turned by pi with the bodies swapped: the same relative position and
+    // velocity, each body turned by pi (round bodies do not notice).
     let seen = Initial {
         omega: init.partner_omega,
         partner_omega: init.omega,
+        phi0: init.partner_phi0 + std::f64::consts::PI,
+        partner_phi0: init.phi0 + std::f64::consts::PI,
         ..*init
     };
     match simulate(&swapped, &seen) {

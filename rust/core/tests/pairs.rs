@@ -453,22 +453,7 @@ fn invalid_name(scene: &Scene) -> String {
 
 #[test]
 fn what_a_pair_cannot_be_is_refused_naming_the_parameter() {
-    let gon = Shape::regular_polygon(R, 6).unwrap();
     let cases: Vec<(&str, Scene)> = vec![
-        (
-            "partner",
-            disc_pair(Scene {
-                shape: gon.clone(),
-                ..Scene::default()
-            }),
-        ),
-        (
-            "partner",
-            Scene {
-                partner: Some(Partner::of(gon)),
-                ..Scene::default()
-            },
-        ),
         (
             "partner",
             Scene {

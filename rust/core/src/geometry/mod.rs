@@ -6,6 +6,7 @@ pub mod chain;
 pub mod disc;
 pub mod overlap;
 pub mod pair;
+pub mod pair_shapes;
 pub mod parry;
 pub mod polygon;
 pub mod shape;

@@ -1,5 +1,7 @@
-//! Where two round bodies of a pair meet (docs/model.md, section 17): two discs' lens, and two
-//! spheres' Hertz contact, both as functions of the distance between the centres alone.
+//! Where the two bodies of a pair meet (docs/model.md, section 17): the frame every pairing
+//! gives the laws ([`PairFrame`], [`PairGeometry`]), and the round pairings: two discs' lens
+//! and two spheres' Hertz contact, both functions of the distance between the centres alone
+//! (bodies with corners: [`super::pair_shapes`]).
 //!
 //! The lens of two discs is cut by its chord (on the radical line) into two circular segments,
 //! one of each disc; each is computed as the plate's segment is (`disc_segment_at`: a series
@@ -8,7 +10,101 @@
 
 use super::disc::disc_segment_at;
 
-/// What the contact law needs of a pair's overlap, measured along the line of centres.
+/// Where a pair's forces act at one configuration, as the laws read it (docs/model.md,
+/// sections 17.2 and 17.7). A lever L = (L_1, L_2) of a force along a direction u acting at
+/// point x is ((x - q) x u, -(x x u)): the torques on the particle and the partner per unit
+/// of the force, and the rates of the point's relative velocity along u per unit of each spin.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PairFrame {
+    /// Unit normal from the partner towards the particle; the tangent is t = (n_y, -n_x).
+    pub n: [f64; 2],
+    /// The overlap's depth along n (m).
+    pub depth: f64,
+    /// Overlap area (m^2; the Hertz contact circle's pi a^2 for spheres).
+    pub area: f64,
+    /// Chord length l (m): dA/dt = -l (g_n + lever_rate_area . omega).
+    pub chord: f64,
+    /// Lever of the area law's elastic force (acting at the overlap's centroid).
+    pub lever_area: [f64; 2],
+    /// Lever of the area law's damping: -b_i / l (dA/dt's terms in the spins).
+    pub lever_rate_area: [f64; 2],
+    /// Lever of the tangential force (along t, at the overlap's centroid).
+    pub lever_t: [f64; 2],
+    /// The linear law's springs.
+    pub springs: Springs,
+}
+
+/// The linear law's springs on a pair (docs/model.md, section 17.7): spring i presses the
+/// particle along its unit direction u_i at the point x_i with its depth d_i, and the partner
+/// back; w_i = (u_i, (x_i - q) x u_i, -(x_i x u_i)) is its direction on the lanes, so that its
+/// force on them is F_i w_i and the rate of its depth -w_i . v.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Springs {
+    /// Their number.
+    pub count: f64,
+    /// Sum of the depths (m).
+    pub depth: f64,
+    /// Half the sum of the squared depths (m^2): the springs' potential per unit stiffness.
+    pub potential: f64,
+    /// Sum of d_i w_i.
+    pub push: [f64; 4],
+    /// Sum of w_i.
+    pub sum: [f64; 4],
+    /// Sum of w_i w_i^T (upper triangle, row by row).
+    pub metric: [f64; 10],
+}
+
+impl Springs {
+    /// Adds a spring of depth `depth` (m) and lane direction `w`.
+    #[inline(always)]
+    pub fn add(&mut self, depth: f64, w: [f64; 4]) {
+        self.count += 1.0;
+        self.depth += depth;
+        self.potential += 0.5 * depth * depth;
+        let mut k = 0;
+        for i in 0..4 {
+            self.push[i] += depth * w[i];
+            self.sum[i] += w[i];
+            for j in i..4 {
+                self.metric[k] += w[i] * w[j];
+                k += 1;
+            }
+        }
+    }
+
+    /// Sum of (w_i . v) w_i: the springs' depth rates' (negated) generalised dashpot force per
+    /// unit damping.
+    #[inline(always)]
+    pub fn rates(&self, v: &[f64; 4]) -> [f64; 4] {
+        let m = &self.metric;
+        [
+            m[0] * v[0] + m[1] * v[1] + m[2] * v[2] + m[3] * v[3],
+            m[1] * v[0] + m[4] * v[1] + m[5] * v[2] + m[6] * v[3],
+            m[2] * v[0] + m[5] * v[1] + m[7] * v[2] + m[8] * v[3],
+            m[3] * v[0] + m[6] * v[1] + m[8] * v[2] + m[9] * v[3],
+        ]
+    }
+}
+
+/// How a pair's two bodies overlap at the lanes q = (x, y, phi1, phi2) (the particle's centre
+/// relative to the partner's, and the two orientations); one implementation per pairing, so
+/// that the pair's loop is compiled for each.
+pub trait PairGeometry: Copy {
+    /// Whether a body has corners: then bodies apart and receding may still touch again (a
+    /// spinning corner), and the impact ends only when they cannot ([`PairGeometry::gap`]).
+    const CORNERS: bool;
+    /// The contact's frame at `q`; `None` when apart.
+    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame>;
+    /// The depth at `q` when in contact, minus the bodies' distance when apart (m).
+    fn signed_depth(&self, q: &[f64; 4]) -> f64;
+    /// The particle's centre's height above the partner's at first touch, straight above it,
+    /// for orientations `phi1`, `phi2` (rad).
+    fn touch_height(&self, phi1: f64, phi2: f64) -> f64;
+    /// The largest centre distance at which the bodies can touch (m).
+    fn reach(&self) -> f64;
+}
+
+/// What a round pair's overlap is, measured along the line of centres.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PairOverlap {
     /// Overlap of the centre distance, delta = r1 + r2 - d (m, > 0 in contact).
@@ -22,13 +118,33 @@ pub struct PairOverlap {
     pub arm1: f64,
 }
 
-/// How a pair's two bodies overlap, as a function of their centres' distance; one
-/// implementation per pairing, so that the pair's loop is compiled for each.
-pub trait PairGeometry: Copy {
-    /// The overlap at centre distance `d`; `None` when apart.
-    fn overlap(&self, d: f64) -> Option<PairOverlap>;
-    /// The sum of the radii: the centre distance at touch.
-    fn touch_distance(&self) -> f64;
+/// The frame of a round pair at `q` from its overlap at the centres' distance: everything
+/// acts on the line of centres, so only the tangential force has levers (its arms).
+#[inline(always)]
+fn round_frame(
+    q: &[f64; 4],
+    linear: bool,
+    overlap: impl Fn(f64) -> Option<PairOverlap>,
+) -> Option<PairFrame> {
+    // sqrt, not hypot: the centres' distance is never near the floats' limits, and hypot's
+    // care cost a fifth of a pair's step.
+    let d = (q[0] * q[0] + q[1] * q[1]).sqrt();
+    let o = overlap(d)?;
+    let inv_d = 1.0 / d;
+    let n = [q[0] * inv_d, q[1] * inv_d];
+    let mut springs = Springs::default();
+    if linear {
+        springs.add(o.depth, [n[0], n[1], 0.0, 0.0]);
+    }
+    Some(PairFrame {
+        n,
+        depth: o.depth,
+        area: o.area,
+        chord: o.chord,
+        lever_t: [o.arm1, d - o.arm1],
+        springs,
+        ..PairFrame::default()
+    })
 }
 
 /// Two discs of radii `r1` (the particle) and `r2` (the partner).
@@ -38,6 +154,8 @@ pub struct DiscPair {
     pub r1: f64,
     /// The partner's radius (m).
     pub r2: f64,
+    /// Whether the frame carries the linear law's spring (its other laws do without).
+    pub linear: bool,
 }
 
 /// The depths of the two caps a chord on the radical line cuts from discs (or spheres) of
@@ -49,8 +167,31 @@ fn cap_depths(r1: f64, r2: f64, d: f64, delta: f64) -> (f64, f64) {
 }
 
 impl PairGeometry for DiscPair {
+    const CORNERS: bool = false;
+
     #[inline(always)]
-    fn overlap(&self, d: f64) -> Option<PairOverlap> {
+    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
+        round_frame(q, self.linear, |d| self.overlap(d))
+    }
+
+    fn signed_depth(&self, q: &[f64; 4]) -> f64 {
+        // sqrt, not hypot (see `round_frame`): the fixed-step loop asks it every step.
+        self.r1 + self.r2 - (q[0] * q[0] + q[1] * q[1]).sqrt()
+    }
+
+    fn touch_height(&self, _phi1: f64, _phi2: f64) -> f64 {
+        self.r1 + self.r2
+    }
+
+    fn reach(&self) -> f64 {
+        self.r1 + self.r2
+    }
+}
+
+impl DiscPair {
+    /// The lens at centre distance `d`; `None` when apart.
+    #[inline(always)]
+    pub fn overlap(&self, d: f64) -> Option<PairOverlap> {
         let delta = self.r1 + self.r2 - d;
         if delta <= 0.0 {
             return None;
@@ -83,10 +224,6 @@ impl PairGeometry for DiscPair {
             arm1: (c1.area * dist1 + c2.area * (d - dist2)) / area,
         })
     }
-
-    fn touch_distance(&self) -> f64 {
-        self.r1 + self.r2
-    }
 }
 
 /// Two spheres of radii `r1` (the particle) and `r2` (the partner): the Hertz contact, its
@@ -98,11 +235,36 @@ pub struct SpherePair {
     pub r1: f64,
     /// The partner's radius (m).
     pub r2: f64,
+    /// Whether the frame carries the linear law's spring (its other laws do without).
+    pub linear: bool,
 }
 
 impl PairGeometry for SpherePair {
+    const CORNERS: bool = false;
+
     #[inline(always)]
-    fn overlap(&self, d: f64) -> Option<PairOverlap> {
+    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
+        round_frame(q, self.linear, |d| self.overlap(d))
+    }
+
+    fn signed_depth(&self, q: &[f64; 4]) -> f64 {
+        // sqrt, not hypot (see `round_frame`): the fixed-step loop asks it every step.
+        self.r1 + self.r2 - (q[0] * q[0] + q[1] * q[1]).sqrt()
+    }
+
+    fn touch_height(&self, _phi1: f64, _phi2: f64) -> f64 {
+        self.r1 + self.r2
+    }
+
+    fn reach(&self) -> f64 {
+        self.r1 + self.r2
+    }
+}
+
+impl SpherePair {
+    /// The Hertz contact at centre distance `d`; `None` when apart.
+    #[inline(always)]
+    pub fn overlap(&self, d: f64) -> Option<PairOverlap> {
         let delta = self.r1 + self.r2 - d;
         if delta <= 0.0 {
             return None;
@@ -117,10 +279,6 @@ impl PairGeometry for SpherePair {
             arm1: self.r1 - h1,
         })
     }
-
-    fn touch_distance(&self) -> f64 {
-        self.r1 + self.r2
-    }
 }
 
 #[cfg(test)]
@@ -133,7 +291,13 @@ mod tests {
     fn identical_discs_lens_is_two_plate_segments() {
         let r = 0.01;
         for delta in [1e-9, 1e-6, 1e-4, 3e-3, 9e-3] {
-            let lens = DiscPair { r1: r, r2: r }.overlap(2.0 * r - delta).unwrap();
+            let lens = DiscPair {
+                r1: r,
+                r2: r,
+                linear: false,
+            }
+            .overlap(2.0 * r - delta)
+            .unwrap();
             let seg = disc_segment_at(r, r - 0.5 * delta, 0.5 * delta);
             let rel = (lens.area - 2.0 * seg.area).abs() / (2.0 * seg.area);
             assert!(rel < 1e-9 * (r / delta).max(1.0), "delta {delta}: {rel:e}");
@@ -151,7 +315,13 @@ mod tests {
         let seg = disc_segment_at(r, r - delta, delta);
         let mut last = f64::INFINITY;
         for r2 in [1.0, 1e2, 1e4] {
-            let lens = DiscPair { r1: r, r2 }.overlap(r + r2 - delta).unwrap();
+            let lens = DiscPair {
+                r1: r,
+                r2,
+                linear: false,
+            }
+            .overlap(r + r2 - delta)
+            .unwrap();
             let err = (lens.area - seg.area).abs() / seg.area;
             assert!(err < last, "r2 {r2}: {err:e}");
             last = err;
@@ -166,7 +336,13 @@ mod tests {
         let (r1, r2) = (0.01, 0.023);
         for delta in [1e-3, 5e-3, 9e-3] {
             let d = r1 + r2 - delta;
-            let lens = DiscPair { r1, r2 }.overlap(d).unwrap();
+            let lens = DiscPair {
+                r1,
+                r2,
+                linear: false,
+            }
+            .overlap(d)
+            .unwrap();
             // Centre 1 at 0, centre 2 at d on the x axis: the lens spans x in [d - r2, r1].
             let n = 200_000;
             let (a, b) = (d - r2, r1);

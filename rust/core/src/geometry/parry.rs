@@ -113,6 +113,7 @@ impl ConvexObstacle {
                 particle: world,
                 obstacle,
                 out,
+                ..
             } = &mut *buf;
             world.clear();
             // Work relative to the particle's centre, scaled to O(1) by a power of two.
@@ -152,6 +153,7 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
             particle: world,
             obstacle,
             out,
+            ..
         } = &mut *buf;
         // The same expressions and lowest vertex as the half-plane path, then an exact
         // scaling.
@@ -215,6 +217,46 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
     })
 }
 
+/// The overlap of two convex polygons whose counter-clockwise vertices `particle` and `partner`
+/// are given in one frame (m), of size about `reach`: its patch and the overlap polygon's
+/// vertices, each marked when it is a crossing of the two boundaries (the others are corners
+/// of one polygon inside the other), handed to `f`. `None` when they do not overlap.
+pub(crate) fn polygon_pair_overlap<R>(
+    particle: impl Iterator<Item = [f64; 2]>,
+    partner: impl Iterator<Item = [f64; 2]>,
+    reach: f64,
+    f: impl FnOnce(&Patch, &[([f64; 2], bool)]) -> R,
+) -> Option<R> {
+    let scale = pow2_scale(reach);
+    SCRATCH.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let Scratch {
+            particle: a,
+            obstacle: b,
+            out,
+            points,
+        } = &mut *buf;
+        a.clear();
+        a.extend(particle.map(|p| V::new(p[0] * scale, p[1] * scale)));
+        b.clear();
+        b.extend(partner.map(|p| V::new(p[0] * scale, p[1] * scale)));
+        let p = intersect(a, b, out)?;
+        let inv = 1.0 / scale;
+        let back = |q: [f64; 2]| [q[0] * inv, q[1] * inv];
+        let patch = Patch {
+            area: p.area * inv * inv,
+            centroid: back(p.centroid),
+            chord: p.chord.map(|[u, w]| [back(u), back(w)]),
+        };
+        points.clear();
+        points.extend(
+            out.iter()
+                .map(|&(v, crossing)| ([v.x * inv, v.y * inv], crossing)),
+        );
+        Some(f(&patch, points))
+    })
+}
+
 /// A power of two near 1 / r: multiplying by it is exact.
 fn pow2_scale(r: f64) -> f64 {
     let e = (-r.log2().round()).clamp(-1000.0, 1000.0);
@@ -227,6 +269,8 @@ struct Scratch {
     particle: Vec<V>,
     obstacle: Vec<V>,
     out: Vec<(V, bool)>,
+    /// The overlap's vertices in the caller's units (`polygon_pair_overlap`).
+    points: Vec<([f64; 2], bool)>,
 }
 
 thread_local! {

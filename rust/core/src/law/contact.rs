@@ -1,6 +1,7 @@
 //! The contact law: normal force (area or linear law, with damping, never attractive) and the
 //! tangential force, evaluated once per time step at the integrator's predicted state.
 
+use crate::geometry::pair::PairFrame;
 use crate::geometry::{disc_segment, parry, sphere_contact, Overlap, OverlapMethod, Shape};
 use crate::law::tangential::{StickState, TangentialSpring};
 use crate::model::{Hertz, Model, NormalLaw};
@@ -108,6 +109,20 @@ pub trait PlateGeometry: Clone {
     }
 }
 
+/// The normal force on a pair before the clip: its elastic and damping parts as numbers (their
+/// sum decides the clip) and as generalised forces on the lanes (x, y, phi1, phi2).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct PairNormal {
+    /// Elastic part (N/m).
+    pub f_el: f64,
+    /// Damping part (N/m).
+    pub f_d: f64,
+    /// The elastic part on the lanes.
+    pub el: [f64; 4],
+    /// The damping part on the lanes.
+    pub damp: [f64; 4],
+}
+
 /// The normal law's force on an overlap, with its constants derived once per impact: the one
 /// formula of each law that every integrator evaluates (a polygon under the linear law takes
 /// [`vertex_springs`] instead).
@@ -172,6 +187,46 @@ impl NormalForce {
                 let s = delta.sqrt();
                 (h.k * delta * s, h.c * s.sqrt() * -v[1], 0.0, 0.0)
             }
+        }
+    }
+
+    /// The normal force on a pair's frame `f` at lane velocity `v` = (g_x, g_y, omega1,
+    /// omega2), before the clip (docs/model.md, section 17): the area law on the area, damped
+    /// by dA/dt = -l (g_n + lever_rate_area . omega), acting along n at its levers; the linear
+    /// law on the springs, each with its own dashpot; the Hertz law at the depth.
+    #[inline(always)]
+    pub fn on_pair(&self, f: &PairFrame, v: &[f64; 4]) -> PairNormal {
+        let n = f.n;
+        let g_n = n[0] * v[0] + n[1] * v[1];
+        let at = |l: [f64; 2]| l[0] * v[2] + l[1] * v[3];
+        let (f_el, f_d) = match self.law {
+            NormalLaw::Area => (
+                f.area * self.e_over_l,
+                self.area_damping * (-f.chord * (g_n + at(f.lever_rate_area))),
+            ),
+            NormalLaw::Linear { kn, cn } => {
+                let s = &f.springs;
+                let rates = s.rates(v);
+                let rate: f64 = (0..4).map(|i| s.sum[i] * v[i]).sum();
+                return PairNormal {
+                    f_el: kn * s.depth,
+                    f_d: -cn * rate,
+                    el: s.push.map(|x| kn * x),
+                    damp: rates.map(|x| -cn * x),
+                };
+            }
+            NormalLaw::Hertz { .. } => {
+                let h = &self.hertz;
+                let s = f.depth.max(0.0).sqrt();
+                (h.k * f.depth * s, h.c * s.sqrt() * -g_n)
+            }
+        };
+        let (la, ld) = (f.lever_area, f.lever_rate_area);
+        PairNormal {
+            f_el,
+            f_d,
+            el: [f_el * n[0], f_el * n[1], f_el * la[0], f_el * la[1]],
+            damp: [f_d * n[0], f_d * n[1], f_d * ld[0], f_d * ld[1]],
         }
     }
 

@@ -1,11 +1,11 @@
 //! The contact law on a pair (docs/model.md, section 17): the plate's normal and tangential
 //! laws, read with the pair's effective constants ([`crate::model::Pair`]), acting along the
-//! line of centres and across it, on the relative motion and on both rotations.
+//! contact's normal and tangent at the points its frame gives ([`PairFrame`]: the line of
+//! centres for round bodies), on the relative motion and on both rotations.
 
-use super::contact::{tangential_step, NormalForce};
+use super::contact::{tangential_step, NormalForce, PairNormal};
 use super::tangential::{StickState, TangentialSpring};
 use crate::geometry::pair::PairGeometry;
-use crate::geometry::Overlap;
 use crate::model::Model;
 
 /// A pair's four degrees of freedom (x, y, phi1, phi2), their rates, or the forces and
@@ -16,7 +16,7 @@ pub type Lanes = [f64; 4];
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct PairForces {
     /// The normal force's elastic and damping parts (clipped) and the tangential force, on
-    /// the particle along n and t (the partner takes their opposite).
+    /// the particle (the partner takes their opposite).
     pub f_el: f64,
     /// See `f_el`.
     pub f_d: f64,
@@ -24,8 +24,12 @@ pub struct PairForces {
     pub f_t: f64,
     /// The unit normal (from the partner to the particle) and tangent t = (n_y, -n_x).
     pub n: [f64; 2],
-    /// The arms from each centre to the point where the forces act, along the line of centres.
-    pub arms: [f64; 2],
+    /// The elastic and damping parts as generalised forces on the lanes.
+    pub el: Lanes,
+    /// See `el`.
+    pub damp: Lanes,
+    /// The tangential force's lever on the two spins.
+    pub lever_t: [f64; 2],
     /// The overlap's area and depth (0 when apart).
     pub area: f64,
     /// See `area`.
@@ -34,15 +38,20 @@ pub struct PairForces {
     pub stick: StickState,
 }
 
+/// The dot product of two lane vectors.
+#[inline(always)]
+pub fn dot(a: &Lanes, b: &Lanes) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3]
+}
+
 impl PairForces {
     /// The powers of the normal force (elastic, damping) and of the tangential force on the
     /// relative motion at lane velocities `v` = (g_x, g_y, omega1, omega2).
     #[inline(always)]
     pub fn powers(&self, v: &Lanes) -> (f64, f64, f64) {
         let [nx, ny] = self.n;
-        let g_n = nx * v[0] + ny * v[1];
-        let v_t = ny * v[0] - nx * v[1] + self.arms[0] * v[2] + self.arms[1] * v[3];
-        (self.f_el * g_n, self.f_d * g_n, self.f_t * v_t)
+        let v_t = ny * v[0] - nx * v[1] + self.lever_t[0] * v[2] + self.lever_t[1] * v[3];
+        (dot(&self.el, v), dot(&self.damp, v), self.f_t * v_t)
     }
 }
 
@@ -73,55 +82,36 @@ impl<'a, G: PairGeometry> PairContact<'a, G> {
     /// by `dt`.
     #[inline(always)]
     pub fn evaluate(&mut self, q: &Lanes, v: &Lanes, dt: f64) -> (Lanes, PairForces) {
-        // sqrt, not hypot: the centres' distance is never near the floats' limits, and
-        // hypot's care cost a fifth of a pair's step.
-        let d = (q[0] * q[0] + q[1] * q[1]).sqrt();
-        let inv_d = 1.0 / d;
-        let n = [q[0] * inv_d, q[1] * inv_d];
-        let Some(o) = self.geometry.overlap(d) else {
+        let Some(fr) = self.geometry.frame(q) else {
             self.spring.reset();
-            return (
-                [0.0; 4],
-                PairForces {
-                    n,
-                    ..PairForces::default()
-                },
-            );
+            return ([0.0; 4], PairForces::default());
         };
-        let arms = [o.arm1, d - o.arm1];
-        let g_n = n[0] * v[0] + n[1] * v[1];
-        let g_t = n[1] * v[0] - n[0] * v[1];
-        // The normal law as on the plate, in the contact's frame: the chord's midpoint and
-        // the centroid lie on the line of centres (no lever).
-        let frame = Overlap {
-            area: o.area,
-            chord: o.chord,
-            depth: o.depth,
-            ..Overlap::default()
-        };
-        let (f_el, f_d, _, _) = self.normal.on_overlap(&frame, &[g_t, g_n, 0.0]);
-        let (f_n, f_el, f_d) = if f_el + f_d < 0.0 {
-            (0.0, 0.0, 0.0)
-        } else {
-            (f_el + f_d, f_el, f_d)
-        };
-        let v_t = g_t + arms[0] * v[2] + arms[1] * v[3];
-        let (f_t, stick) = tangential_step(&mut self.spring, self.law, o.depth, v_t, dt, f_n);
+        let n = fr.n;
         let t = [n[1], -n[0]];
-        let force = [
-            f_n * n[0] + f_t * t[0],
-            f_n * n[1] + f_t * t[1],
-            arms[0] * f_t,
-            arms[1] * f_t,
+        let mut normal = self.normal.on_pair(&fr, v);
+        if normal.f_el + normal.f_d < 0.0 {
+            normal = PairNormal::default();
+        }
+        let f_n = normal.f_el + normal.f_d;
+        let v_t = t[0] * v[0] + t[1] * v[1] + fr.lever_t[0] * v[2] + fr.lever_t[1] * v[3];
+        let (f_t, stick) = tangential_step(&mut self.spring, self.law, fr.depth, v_t, dt, f_n);
+        let tan = [
+            f_t * t[0],
+            f_t * t[1],
+            f_t * fr.lever_t[0],
+            f_t * fr.lever_t[1],
         ];
+        let force = std::array::from_fn(|i| normal.el[i] + normal.damp[i] + tan[i]);
         let forces = PairForces {
-            f_el,
-            f_d,
+            f_el: normal.f_el,
+            f_d: normal.f_d,
             f_t,
             n,
-            arms,
-            area: o.area,
-            depth: o.depth,
+            el: normal.el,
+            damp: normal.damp,
+            lever_t: fr.lever_t,
+            area: fr.area,
+            depth: fr.depth,
             stick,
         };
         (force, forces)

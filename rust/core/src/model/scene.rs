@@ -327,8 +327,8 @@ pub struct Partner {
 
 impl Partner {
     /// The partners the consistency matrix pairs `shape` with, named: none (the plate), a twin
-    /// of the particle, and a body of its kind twice as large, three times as dense and twice as
-    /// stiff (a polygon's are refused: pairs with polygons are not modelled).
+    /// of the particle, and a round body twice as large and three times as dense (a sphere for
+    /// a sphere, else a disc: a polygon's "big" partner is the disc-polygon pairing).
     pub fn representatives(shape: &Shape) -> Vec<(String, Option<Partner>)> {
         let r = shape.circumradius();
         let big = match shape {

@@ -21,6 +21,12 @@ pub const ADAPTIVE_TOL: f64 = 1e-9;
 /// over this matrix and the long random one.
 pub fn documented_gain_bound(scene: &Scene) -> f64 {
     let polygon = !matches!(scene.shape, Shape::Disc { .. });
+    if corners_in_pair(scene) && matches!(scene.normal_law, NormalLaw::Linear { .. }) {
+        // Gear-5 (the one integrator of this pairing) steps through the vertex springs'
+        // switches of edge (their force turns there) without locating them: measured up to
+        // 3.4e-5 on twin triangles (`tests/consistency.rs`).
+        return 5e-5;
+    }
     match (scene.integrator, scene.normal_law, polygon) {
         (Integrator::Reference, _, _) => 1e-9,
         // The adaptive path: its e_kin error is at most a few tol.
@@ -48,6 +54,11 @@ pub fn documented_gain_bound(scene: &Scene) -> f64 {
 /// 4.3e-6, 9.3e-7, 1.6e-7 per halving of the step; docs/consistency.md).
 pub fn documented_residual_bound(scene: &Scene) -> f64 {
     let polygon = matches!(scene.shape, Shape::Polygon(_));
+    if corners_in_pair(scene) && matches!(scene.normal_law, NormalLaw::Linear { .. }) {
+        // As for the gain: the springs' switches and the dashpots' jumps at touch are stepped
+        // through (measured up to 7.0e-6 on a convex 7-gon pair).
+        return 1e-5;
+    }
     match (scene.integrator, scene.normal_law) {
         (Integrator::Reference | Integrator::Adaptive, _)
         | (_, NormalLaw::Area)
@@ -70,4 +81,13 @@ pub fn documented_angular_momentum_bound(scene: &Scene) -> f64 {
         Integrator::Adaptive => 1e-2 * scene.tol,
         _ => 1e-12,
     }
+}
+
+/// Whether `scene` is a pair in which a body has corners (docs/model.md, section 17.7).
+pub fn corners_in_pair(scene: &Scene) -> bool {
+    let corners = |s: &Shape| matches!(s, Shape::Polygon(_));
+    scene
+        .partner
+        .as_ref()
+        .is_some_and(|p| corners(&p.shape) || corners(&scene.shape))
 }

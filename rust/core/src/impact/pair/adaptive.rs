@@ -12,8 +12,10 @@
 //! spring's trial force would move inside the cone, s dF_trial/dt < mu dF_n/dt (both rates
 //! taken along the motion by a forward difference).
 
+use super::flight::{self, Flight};
 use super::ode::{Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WN, WT, X, XI, Y};
-use super::record::close_pair;
+use super::record::{close_pair, separation_normal};
+use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
@@ -43,12 +45,12 @@ const CHATTER_SPAN: f64 = 1e-9;
 pub(super) fn integrate<G: PairGeometry>(
     pair: &Pair,
     init: &Initial,
-    geometry: G,
+    (geometry, start): (G, Start),
     (depth_est, tol, max_steps): (f64, f64, u64),
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let mut run = Run::new(pair, init, geometry, depth_est, tol);
+    let mut run = Run::new(pair, init, (geometry, start), depth_est, tol);
     run.rec.step_budget = max_steps;
     let mut trace = trace;
     if let Some(tr) = trace.as_deref_mut() {
@@ -60,7 +62,7 @@ pub(super) fn integrate<G: PairGeometry>(
         if run.attempts >= max_steps {
             break StopReason::StepBudget;
         }
-        if run.t > run.t_end {
+        if run.contact_elapsed() > run.t_end {
             break StopReason::ContactTimeBudget;
         }
         if run.attempt(&mut step) {
@@ -98,11 +100,26 @@ struct Run<'a, G> {
     chatter: u32,
     chatter_span: f64,
     separated: bool,
+    /// When the current contact began (s), the centres' distance at first touch and the line
+    /// of centres when the last contact ended.
+    t_touch: f64,
+    /// How far past a touch its mode is probed (s).
+    probe_dt: f64,
+    /// The sliding speed along a slip's force past which the slip ends (m/s).
+    slip_margin: f64,
+    y0: f64,
+    n_sep: [f64; 2],
     rec: Record,
 }
 
 impl<'a, G: PairGeometry> Run<'a, G> {
-    fn new(pair: &'a Pair, init: &Initial, geometry: G, depth_est: f64, tol: f64) -> Self {
+    fn new(
+        pair: &'a Pair,
+        init: &Initial,
+        (geometry, start): (G, Start),
+        depth_est: f64,
+        tol: f64,
+    ) -> Self {
         let law = &pair.law;
         let speed = init.vx.hypot(init.vy);
         let t_est = PI * depth_est / init.vy.abs();
@@ -119,8 +136,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             fd_step: 1e-7 * t_est,
         };
         let s: State = [
-            0.0,
-            geometry.touch_distance(),
+            start.q[0],
+            start.q[1],
             init.vx,
             init.vy,
             init.phi0,
@@ -133,6 +150,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         ];
         let mut mode = Mode {
             clipped: false,
+            apart: false,
             tan: Tan::None,
         };
         // The mode just after touch, where the linear law's dashpot already pushes (at touch
@@ -164,6 +182,11 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             chatter: 0,
             chatter_span: CHATTER_SPAN * t_est,
             separated: false,
+            t_touch: 0.0,
+            probe_dt: 1e-12 * t_est,
+            slip_margin: 1e-6 * speed,
+            y0: start.q[1],
+            n_sep: [0.0, 1.0],
             rec: Record {
                 contacts: 1,
                 energy_in,
@@ -209,6 +232,11 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             };
         } else {
             self.chatter = 0;
+            if self.mode.apart {
+                self.fly();
+            } else {
+                self.end_a_reversed_slip();
+            }
         }
         self.k1 = self.ode.eval_new(&self.mode, &self.s).0;
         self.h = (h * step_factor(err.max(1e-12))).min(self.h_max);
@@ -219,18 +247,13 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// whose error a root singularity of the force does not hide (the plate's rule).
     fn capped_step(&self) -> f64 {
         let mut h = self.h.min(self.h_max);
-        if !self.mode.clipped && self.singular() {
-            if self.t < 2.0 * self.h_singular {
+        if !self.mode.clipped && !self.mode.apart && self.singular() {
+            if self.t - self.t_touch < 2.0 * self.h_singular {
                 h = h.min(self.h_singular);
             }
             // Towards separation, half the time left until the overlap closes (the force's
             // root singularity lies there too).
-            let s = &self.s;
-            let d = s[X].hypot(s[Y]);
-            let (depth, rate) = (
-                self.ode.geometry.touch_distance() - d,
-                (s[X] * s[GX] + s[Y] * s[GY]) / d,
-            );
+            let (depth, rate) = self.ode.opening(&self.s);
             if depth > 0.0 && rate > 0.0 {
                 h = h.min((0.5 * depth / rate).max(self.h_singular));
             }
@@ -247,12 +270,13 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// The step's scaled error norm, the embedded estimate understating a step from touch by
     /// the tableau's factor (`root_error_ratio`).
     fn error_norm(&self, step: &DenseStep<NS, NS>, h: f64) -> f64 {
-        let factor = if self.singular() && self.t < 2.0 * h {
+        let since = self.t - self.t_touch;
+        let factor = if self.singular() && !self.mode.apart && since < 2.0 * h {
             let p = match self.ode.pair.law.scene.normal_law {
                 NormalLaw::Hertz { .. } => 0.25,
                 _ => 0.5,
             };
-            root_error_ratio(p, self.t / h, false)
+            root_error_ratio(p, since / h, false)
         } else {
             1.0
         };
@@ -293,10 +317,28 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     fn apply(&mut self, ev: Event) {
         let (ode, s) = (&self.ode, &mut self.s);
         match ev {
-            Event::Separate => self.separated = true,
+            Event::Separate => self.separate(),
+            Event::Touch => {
+                self.mode = Mode {
+                    clipped: false,
+                    apart: false,
+                    tan: Tan::None,
+                };
+                s[XI] = 0.0;
+                // The mode just after touch, probed a hair inside (at touch itself the
+                // contact's frame is not yet defined), as at the first touch.
+                let mut probe = *s;
+                for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
+                    probe[i] += self.probe_dt * s[rate];
+                }
+                self.mode.tan = ode.initial_tan(&self.mode, &probe);
+                self.t_touch = self.t;
+                self.rec.contacts += 1;
+            }
             Event::ClipOn => {
                 self.mode = Mode {
                     clipped: true,
+                    apart: false,
                     tan: Tan::Free,
                 }
             }
@@ -314,6 +356,72 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                 let e = ode.eval_new(&self.mode, s).1;
                 s[XI] = ode.slipping_xi(&e);
                 self.mode.tan = Tan::Stick;
+            }
+        }
+    }
+
+    /// Ends a slip whose force has turned with the sliding (s v_t > 0 past a margin of the
+    /// speed) at the end of a step: the rate test of `ToStick` samples a sign change that a
+    /// turning contact frame (bodies with corners) can carry through within one step, and a
+    /// slip left on would feed the motion. The contact sticks at its slipping elongation,
+    /// from where sticking moves the spring's force inside the cone.
+    fn end_a_reversed_slip(&mut self) {
+        let Tan::Slip(sg) = self.mode.tan else {
+            return;
+        };
+        if !G::CORNERS {
+            return;
+        }
+        let e = self.ode.eval_new(&self.mode, &self.s).1;
+        if sg * e.v_t > self.slip_margin {
+            self.s[XI] = self.ode.slipping_xi(&e);
+            self.mode.tan = Tan::Stick;
+        }
+    }
+
+    /// The time spent in contact so far (s): the budget's measure (flights between contacts
+    /// do not count).
+    fn contact_elapsed(&self) -> f64 {
+        let ongoing = if self.mode.apart {
+            0.0
+        } else {
+            self.t - self.t_touch
+        };
+        self.rec.contact_time + ongoing
+    }
+
+    /// A contact ends: round bodies separate for good; bodies with corners fly apart, their
+    /// flight skipped up to where they might touch again, or the impact ends.
+    fn separate(&mut self) {
+        self.rec.contact_time += self.t - self.t_touch;
+        let s = &mut self.s;
+        let d = s[X].hypot(s[Y]);
+        self.n_sep = [s[X] / d, s[Y] / d];
+        if !G::CORNERS {
+            self.separated = true;
+            return;
+        }
+        self.mode = Mode {
+            clipped: false,
+            apart: true,
+            tan: Tan::None,
+        };
+        self.fly();
+    }
+
+    /// Apart: ends the impact when the bodies can never touch again, else skips the flight up
+    /// to where they might.
+    fn fly(&mut self) {
+        let s = &mut self.s;
+        let q = [s[X], s[Y], s[4], s[6]];
+        let v = [s[GX], s[GY], s[W1], s[W2]];
+        let radii = [self.ode.pair.particle.r, self.ode.pair.r2];
+        match flight::skip(&self.ode.geometry, &q, &v, radii, 2.0 * self.h_max) {
+            Flight::Over => self.separated = true,
+            Flight::Skip(tau) => {
+                let q = flight::advance(&q, &v, tau);
+                (s[X], s[Y], s[4], s[6]) = (q[0], q[1], q[2], q[3]);
+                self.t += tau;
             }
         }
     }
@@ -345,7 +453,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             f_d: e.f_d,
             f_t: e.f_t,
             n: e.n,
-            arms: e.arms,
+            el: e.el,
+            damp: e.damp,
+            lever_t: e.lever_t,
             area: e.area,
             depth: e.depth,
             stick: match self.mode.tan {
@@ -364,12 +474,24 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let mut rec = self.rec;
         rec.stop = stop;
         rec.steps = self.steps;
-        rec.contact_time = self.t;
+        if !self.mode.apart && !self.separated {
+            rec.contact_time += self.t - self.t_touch;
+        }
         rec.work_normal = s[WN];
         rec.work_friction = s[WT];
         let (q, v) = ([s[X], s[Y], s[4], s[6]], [s[GX], s[GY], s[W1], s[W2]]);
-        let reach = self.ode.geometry.touch_distance();
-        close_pair(&mut rec, self.ode.pair, &self.init, (&q, &v), reach);
+        let n_sep = if G::CORNERS {
+            self.n_sep
+        } else {
+            separation_normal(&q, &v, self.ode.geometry.reach())
+        };
+        close_pair(
+            &mut rec,
+            self.ode.pair,
+            &self.init,
+            (&q, &v),
+            (self.y0, n_sep),
+        );
         rec.err_est = Some(self.error_estimate());
         self.rec = rec;
         self.rec

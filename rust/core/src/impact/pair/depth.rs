@@ -1,18 +1,30 @@
 //! The pair's largest overlap from the energy balance of its undamped normal law, and the
 //! refusal of overlaps past half a body's radius.
 
+use super::Start;
 use crate::error::{Error, Result};
-use crate::geometry::pair::{DiscPair, PairGeometry};
+use crate::geometry::pair::{PairFrame, PairGeometry};
 use crate::model::{Initial, NormalLaw, Pair};
 
-/// The pair's largest overlap from the energy balance of its undamped normal law,
-/// refused where a body's cap would pass half its radius (as r / 2 on the plate).
-pub(super) fn estimate_max_overlap(pair: &Pair, init: &Initial) -> Result<f64> {
+/// The pair's largest overlap from the energy balance of its undamped normal law along a
+/// head-on approach from the first touch `start` (orientations held), refused where a body's
+/// cap would pass half its radius (as r / 2 on the plate; for bodies with corners, the caps
+/// of their circumscribed circles).
+pub(super) fn estimate_max_overlap<G: PairGeometry>(
+    pair: &Pair,
+    init: &Initial,
+    geometry: &G,
+    start: &Start,
+) -> Result<f64> {
     let law = &pair.law;
     let (r1, r2) = (pair.particle.r, pair.r2);
     let ke = 0.5 * pair.m_star * init.vy * init.vy;
     let hi = largest_overlap(r1, r2);
-    let potential = |delta: f64| overlap_potential(pair, delta);
+    let frame = |s: f64| {
+        let q = start.q;
+        geometry.frame(&[q[0], q[1] - s, q[2], q[3]])
+    };
+    let potential = |delta: f64| overlap_potential(pair, &frame, delta);
     let (u_hi, _) = potential(hi);
     if u_hi < ke {
         let stiff = match law.scene.normal_law {
@@ -52,27 +64,37 @@ fn largest_overlap(r1: f64, r2: f64) -> f64 {
     lo
 }
 
-/// The undamped normal law's potential at overlap `delta` and its rate (the elastic force).
-fn overlap_potential(pair: &Pair, delta: f64) -> (f64, f64) {
+/// The undamped normal law's potential at an approach `delta` from first touch and its rate
+/// (the elastic force), from the contact's frames along the approach (`frame`).
+fn overlap_potential(
+    pair: &Pair,
+    frame: &impl Fn(f64) -> Option<PairFrame>,
+    delta: f64,
+) -> (f64, f64) {
     let law = &pair.law;
+    // The integral of a force over the approach: Gauss-Legendre on delta t^2, t in [0, 1]
+    // (the lens's area grows like delta^(3/2), a corner's like delta^2).
+    let integral = |force: &dyn Fn(f64) -> f64| -> f64 {
+        GAUSS_8
+            .iter()
+            .map(|&(x, w)| {
+                let t = 0.5 * (x + 1.0);
+                0.5 * w * force(delta * t * t) * 2.0 * delta * t
+            })
+            .sum()
+    };
     match law.scene.normal_law {
         NormalLaw::Area => {
-            // (E* / L) times the integral of the lens area over the overlap (Gauss-Legendre
-            // on delta t^2, t in [0, 1]: the area grows like delta^(3/2)).
-            let (r1, r2) = (pair.particle.r, pair.r2);
-            let lens = DiscPair { r1, r2 };
-            let area = |s: f64| lens.overlap(r1 + r2 - s).map_or(0.0, |o| o.area);
             let k = law.scene.e_modulus / law.length;
-            let integral: f64 = GAUSS_8
-                .iter()
-                .map(|&(x, w)| {
-                    let t = 0.5 * (x + 1.0);
-                    0.5 * w * area(delta * t * t) * 2.0 * delta * t
-                })
-                .sum();
-            (k * integral, k * area(delta))
+            let area = |s: f64| frame(s).map_or(0.0, |f| f.area);
+            (k * integral(&area), k * area(delta))
         }
-        NormalLaw::Linear { kn, .. } => (0.5 * kn * delta * delta, kn * delta),
+        NormalLaw::Linear { kn, .. } => {
+            // The springs' depths (their pushes turn with the edges they press on: their sum is
+            // the force an approach meets, whatever the direction).
+            let springs = |s: f64| frame(s).map_or(0.0, |f| f.springs.depth);
+            (kn * integral(&springs), kn * springs(delta))
+        }
         NormalLaw::Hertz { .. } => {
             let k = law.hertz.map_or(0.0, |h| h.k);
             let f = k * delta * delta.sqrt();

@@ -1,6 +1,9 @@
-//! The pair's fixed-step loop (Gear-5, Verlet on four lanes).
+//! The pair's fixed-step loop (Gear-5, Verlet on four lanes), its free flights between the
+//! contacts of bodies with corners skipped (`flight`).
 
-use super::record::close_pair;
+use super::flight::{self, Flight};
+use super::record::{close_pair, separation_normal};
+use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
@@ -45,6 +48,11 @@ pub(super) struct PairLoop<'a, S, G> {
     work: [f64; 2],
     power: [f64; 2],
     steps: u64,
+    /// Time skipped in free flights between contacts (s).
+    skipped: f64,
+    /// The line of centres when the last contact ended.
+    n_sep: [f64; 2],
+    y0: f64,
     in_contact: bool,
     contact_start: f64,
     prev_depth: f64,
@@ -52,8 +60,13 @@ pub(super) struct PairLoop<'a, S, G> {
 }
 
 impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
-    pub(super) fn new(pair: &'a Pair, init: &Initial, geometry: G, limits: Limits) -> Self {
-        let q0 = [0.0, geometry.touch_distance(), init.phi0, init.partner_phi0];
+    pub(super) fn new(
+        pair: &'a Pair,
+        init: &Initial,
+        (geometry, start): (G, Start),
+        limits: Limits,
+    ) -> Self {
+        let q0 = start.q;
         let v0 = [init.vx, init.vy, init.omega, init.partner_omega];
         let law = &pair.law;
         PairLoop {
@@ -71,6 +84,9 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
             work: [0.0; 2],
             power: [0.0; 2],
             steps: 0,
+            skipped: 0.0,
+            n_sep: [0.0, 1.0],
+            y0: q0[1],
             in_contact: true,
             contact_start: 0.0,
             prev_depth: 0.0,
@@ -95,16 +111,37 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
                 break;
             }
             let (q, v) = self.step(trace.as_deref_mut());
-            // Apart and moving apart: round bodies cannot touch again.
-            if !self.in_contact && q[0] * v[0] + q[1] * v[1] > 0.0 {
+            if !self.in_contact && self.flight_over(&q, &v) {
                 break;
             }
         }
         Ok(self.finish())
     }
 
+    /// Apart: whether the bodies can never touch again (round bodies: once moving apart;
+    /// bodies with corners: once their circumscribed circles part), skipping the flight up
+    /// to where they might.
+    fn flight_over(&mut self, q: &Lanes, v: &Lanes) -> bool {
+        if !G::CORNERS {
+            return q[0] * v[0] + q[1] * v[1] > 0.0;
+        }
+        let dt = self.pair.law.dt;
+        let radii = [self.pair.particle.r, self.pair.r2];
+        match flight::skip(&self.contact.geometry, q, v, radii, 4.0 * dt) {
+            Flight::Over => true,
+            Flight::Skip(tau) if tau > 0.0 => {
+                let q = flight::advance(q, v, tau);
+                self.stepper = S::start_lanes(q, *v, dt);
+                self.skipped += tau;
+                self.prev_depth = self.contact.geometry.signed_depth(&q);
+                false
+            }
+            Flight::Skip(_) => false,
+        }
+    }
+
     fn time(&self) -> f64 {
-        self.steps as f64 * self.pair.law.dt
+        self.steps as f64 * self.pair.law.dt + self.skipped
     }
 
     fn budget_spent(&self) -> Option<StopReason> {
@@ -139,11 +176,17 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
         if f.area > self.rec.max_area {
             self.rec.max_area = f.area;
         }
-        let depth = self.contact.geometry.touch_distance() - (q[0] * q[0] + q[1] * q[1]).sqrt();
+        // The depth at the step's end (bodies with corners in contact: the evaluation's, to
+        // spare a second intersection).
+        let depth = if G::CORNERS && f.area > 0.0 {
+            f.depth
+        } else {
+            self.contact.geometry.signed_depth(&q)
+        };
         if depth > self.rec.max_depth {
             self.rec.max_depth = depth;
         }
-        self.cross(self.time(), dt, depth);
+        self.cross(self.time(), dt, depth, &q);
         if let Some(tr) = trace {
             tr.push_pair(self.time(), &q, &v, &f, self.contact.spring.xi);
         }
@@ -152,11 +195,13 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
     }
 
     /// Contact starts and ends between steps: crossings interpolated linearly.
-    fn cross(&mut self, t: f64, h: f64, depth: f64) {
+    fn cross(&mut self, t: f64, h: f64, depth: f64, q: &Lanes) {
         if self.in_contact && depth <= 0.0 {
             let end = t - h + crossing_fraction(self.prev_depth, depth) * h;
             self.rec.contact_time += end - self.contact_start;
             self.in_contact = false;
+            let d = q[0].hypot(q[1]);
+            self.n_sep = [q[0] / d, q[1] / d];
         } else if !self.in_contact && depth > 0.0 {
             self.contact_start = t - h + crossing_fraction(self.prev_depth, depth) * h;
             self.rec.contacts += 1;
@@ -174,8 +219,12 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
         rec.slip_events = self.contact.spring.slip_events;
         rec.work_normal = self.work[0];
         rec.work_friction = self.work[1];
-        let reach = self.contact.geometry.touch_distance();
-        close_pair(&mut rec, self.pair, &self.init, (&q, &v), reach);
+        let n_sep = if G::CORNERS {
+            self.n_sep
+        } else {
+            separation_normal(&q, &v, self.contact.geometry.reach())
+        };
+        close_pair(&mut rec, self.pair, &self.init, (&q, &v), (self.y0, n_sep));
         rec
     }
 }

@@ -1,25 +1,29 @@
-//! One impact of a pair (docs/model.md, section 17) on the fixed-step integrators: the two
-//! bodies touch with their centres on the y axis (the particle above), the relative velocity
-//! g = v (cos theta, -sin theta) at first touch, and the pair is stepped in its centre-of-mass
-//! frame on four lanes (x, y of the particle relative to the partner, phi1, phi2) until the
-//! bodies separate. Round bodies cannot touch again once they move apart. The adaptive path
-//! (`adaptive`, `ode`) integrates the same coordinates; both end in the one record (`record`).
+//! One impact of a pair (docs/model.md, section 17): the two bodies touch with their centres
+//! on the y axis (the particle above, at the height where they touch with their initial
+//! orientations), the relative velocity g = v (cos theta, -sin theta) at first touch, and the
+//! pair is stepped in its centre-of-mass frame on four lanes (x, y of the particle relative to
+//! the partner, phi1, phi2) until the bodies separate for good. Round bodies cannot touch
+//! again once they move apart; bodies with corners can, until their circumscribed circles
+//! part (`flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `ode`)
+//! integrate the same coordinates; both end in the one record (`record`).
 
 use super::budget::{self, MIN_DEPTH_ULPS};
 use super::record::{Record, Trace, TIMEOUT_CONTACT_TIMES};
 use crate::cancel::Cancel;
 use crate::error::{ensure_param, finite, Error, Result};
-use crate::geometry::pair::{DiscPair, SpherePair};
+use crate::geometry::pair::{DiscPair, PairGeometry, SpherePair};
+use crate::geometry::pair_shapes::ShapePair;
 use crate::geometry::Shape;
-use crate::integrate::{Gear5, Verlet};
+use crate::integrate::{Gear5, Lanes, Verlet};
 use crate::model::scene::MAX_RIM_SPEED;
-use crate::model::{Initial, Integrator, Model, Pair};
+use crate::model::{Initial, Integrator, Model, NormalLaw, Pair};
 use fixed::{Limits, PairLoop};
 use std::f64::consts::PI;
 
 mod adaptive;
 mod depth;
 mod fixed;
+mod flight;
 mod ode;
 mod record;
 
@@ -31,23 +35,75 @@ pub(super) fn run(
     cancel: &Cancel,
 ) -> Result<Record> {
     let pair = Pair::new(model.clone())?;
-    let depth_est = checked_depth(&pair, init)?;
-    if model.scene.integrator.is_adaptive() {
-        return run_adaptive(&pair, init, depth_est, trace, cancel);
+    let (r1, r2) = (pair.particle.r, pair.r2);
+    let particle = &pair.particle.scene.shape;
+    let partner = &pair.partner_shape;
+    let linear = matches!(pair.law.scene.normal_law, NormalLaw::Linear { .. });
+    match (particle, partner) {
+        (Shape::Sphere { .. }, _) => {
+            let geometry = SpherePair { r1, r2, linear };
+            run_on(&pair, init, geometry, trace, cancel)
+        }
+        (Shape::Disc { .. }, Shape::Disc { .. }) => {
+            run_on(&pair, init, DiscPair { r1, r2, linear }, trace, cancel)
+        }
+        _ => {
+            let mut shapes = ShapePair::new(particle, partner)
+                .ok_or_else(|| Error::invalid("partner", "Sphere", "a pairing with corners"))?;
+            shapes.springs = linear;
+            run_on(&pair, init, shapes, trace, cancel)
+        }
     }
-    let mut rec = run_fixed(&pair, init, depth_est, trace, cancel)?;
-    if model.scene.error_estimate {
-        rec.err_est = super::richardson_estimate(model, init, &rec, |half| {
-            run_fixed(&Pair::new(half.clone())?, init, depth_est, None, cancel)
+}
+
+/// One impact of `pair` on `geometry`, on the scene's integrator.
+fn run_on<G: PairGeometry>(
+    pair: &Pair,
+    init: &Initial,
+    geometry: G,
+    trace: Option<&mut Trace>,
+    cancel: &Cancel,
+) -> Result<Record> {
+    let start = Start::of(&geometry, init);
+    let depth_est = checked_depth(pair, init, &geometry, &start)?;
+    if pair.law.scene.integrator.is_adaptive() {
+        return run_adaptive(pair, init, (geometry, start), depth_est, trace, cancel);
+    }
+    let mut rec = run_fixed(pair, init, (geometry, start), depth_est, trace, cancel)?;
+    if pair.law.scene.error_estimate {
+        rec.err_est = super::richardson_estimate(&pair.particle, init, &rec, |half| {
+            let half = Pair::new(half.clone())?;
+            run_fixed(&half, init, (geometry, start), depth_est, None, cancel)
         })?;
     }
     Ok(rec)
 }
 
+/// Where an impact of a pair starts: the particle straight above the partner at the height
+/// where they touch with their initial orientations.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Start {
+    pub(super) q: Lanes,
+}
+
+impl Start {
+    fn of<G: PairGeometry>(geometry: &G, init: &Initial) -> Self {
+        let (phi1, phi2) = (init.phi0, init.partner_phi0);
+        Start {
+            q: [0.0, geometry.touch_height(phi1, phi2), phi1, phi2],
+        }
+    }
+}
+
 /// The pair's estimated largest overlap, after the checks of its initial state: the
 /// partner's spin, a depth that double precision resolves, a contact of at most
 /// `MAX_STEPS_PER_CONTACT` steps.
-fn checked_depth(pair: &Pair, init: &Initial) -> Result<f64> {
+fn checked_depth<G: PairGeometry>(
+    pair: &Pair,
+    init: &Initial,
+    geometry: &G,
+    start: &Start,
+) -> Result<f64> {
     finite("partner_omega_in", init.partner_omega)?;
     ensure_param!(
         init.partner_omega.abs() * pair.r2 <= MAX_RIM_SPEED,
@@ -58,7 +114,7 @@ fn checked_depth(pair: &Pair, init: &Initial) -> Result<f64> {
             pair.r2
         )
     );
-    let depth_est = depth::estimate_max_overlap(pair, init)?;
+    let depth_est = depth::estimate_max_overlap(pair, init, geometry, start)?;
     let reach = pair.particle.r + pair.r2;
     let resolution = MIN_DEPTH_ULPS * f64::EPSILON * reach;
     if depth_est < resolution {
@@ -76,58 +132,40 @@ fn checked_depth(pair: &Pair, init: &Initial) -> Result<f64> {
     Ok(depth_est)
 }
 
-/// Runs the pair's loop for its geometry and integrator.
-fn run_fixed(
+/// Runs the pair's fixed-step loop for its integrator.
+fn run_fixed<G: PairGeometry>(
     pair: &Pair,
     init: &Initial,
+    (geometry, start): (G, Start),
     depth_est: f64,
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let (r1, r2) = (pair.particle.r, pair.r2);
     let limits = Limits {
         max_steps: budget::step_budget(&pair.law, init, depth_est),
         contact_time: TIMEOUT_CONTACT_TIMES * PI * depth_est / init.vy.abs(),
     };
-    let sphere = matches!(pair.particle.scene.shape, Shape::Sphere { .. });
-    match (pair.law.scene.integrator, sphere) {
-        (Integrator::Verlet, false) => {
-            PairLoop::<Verlet, _>::new(pair, init, DiscPair { r1, r2 }, limits).run(trace, cancel)
+    match pair.law.scene.integrator {
+        Integrator::Verlet => {
+            PairLoop::<Verlet, _>::new(pair, init, (geometry, start), limits).run(trace, cancel)
         }
-        (Integrator::Verlet, true) => {
-            PairLoop::<Verlet, _>::new(pair, init, SpherePair { r1, r2 }, limits).run(trace, cancel)
-        }
-        (_, false) => {
-            PairLoop::<Gear5, _>::new(pair, init, DiscPair { r1, r2 }, limits).run(trace, cancel)
-        }
-        (_, true) => {
-            PairLoop::<Gear5, _>::new(pair, init, SpherePair { r1, r2 }, limits).run(trace, cancel)
-        }
+        _ => PairLoop::<Gear5, _>::new(pair, init, (geometry, start), limits).run(trace, cancel),
     }
 }
 
 /// Runs the pair on the adaptive path (`adaptive`) at the scene's tolerance (the
 /// reference's for `integrator="reference"`), its largest step `dt_factor` t_ref.
-fn run_adaptive(
+fn run_adaptive<G: PairGeometry>(
     pair: &Pair,
     init: &Initial,
+    (geometry, start): (G, Start),
     depth_est: f64,
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let (r1, r2) = (pair.particle.r, pair.r2);
     let law = &pair.law;
     let tol = law.scene.local_tol();
     let n_c = budget::reference_contact_steps(law, init, depth_est, law.dt, tol);
     let limits = (depth_est, tol, budget::budget_for(law, n_c));
-    match pair.particle.scene.shape {
-        Shape::Sphere { .. } => {
-            let geometry = SpherePair { r1, r2 };
-            adaptive::integrate(pair, init, geometry, limits, trace, cancel)
-        }
-        _ => {
-            let geometry = DiscPair { r1, r2 };
-            adaptive::integrate(pair, init, geometry, limits, trace, cancel)
-        }
-    }
+    adaptive::integrate(pair, init, (geometry, start), limits, trace, cancel)
 }

@@ -2,8 +2,8 @@
 //! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
 
 use crate::geometry::pair::PairGeometry;
-use crate::geometry::Overlap;
 use crate::law::contact::NormalForce;
+use crate::law::pair::dot;
 use crate::model::Pair;
 
 /// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
@@ -36,6 +36,8 @@ pub(super) enum Tan {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Mode {
     pub(super) clipped: bool,
+    /// Bodies with corners between contacts (no force; the piece ends at the next touch).
+    pub(super) apart: bool,
     pub(super) tan: Tan,
 }
 
@@ -43,6 +45,7 @@ pub(super) struct Mode {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Event {
     Separate,
+    Touch,
     ClipOn,
     ClipOff,
     ToSlip,
@@ -62,7 +65,11 @@ pub(super) struct Eval {
     pub(super) depth: f64,
     pub(super) area: f64,
     pub(super) n: [f64; 2],
-    pub(super) arms: [f64; 2],
+    /// The elastic and damping parts on the lanes (clipped by the mode) and the tangential
+    /// force's lever (`PairFrame`).
+    pub(super) el: [f64; 4],
+    pub(super) damp: [f64; 4],
+    pub(super) lever_t: [f64; 2],
 }
 
 /// The pair's ODE.
@@ -81,32 +88,34 @@ impl<G: PairGeometry> PairOde<'_, G> {
     /// The derivative `ds` of state `s` in mode `m`, and the forces.
     pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
         let law = &self.pair.law;
-        let d = s[X].hypot(s[Y]);
-        let n = [s[X] / d, s[Y] / d];
-        let t = [n[1], -n[0]];
+        let q = [s[X], s[Y], s[4], s[6]];
         let g = [s[GX], s[GY]];
-        let (g_n, g_t) = (n[0] * g[0] + n[1] * g[1], t[0] * g[0] + t[1] * g[1]);
-        let mut e = Eval {
-            n,
-            depth: self.geometry.touch_distance() - d,
-            ..Eval::default()
-        };
-        if let Some(o) = self.geometry.overlap(d) {
-            let frame = Overlap {
-                area: o.area,
-                chord: o.chord,
-                depth: o.depth,
-                ..Overlap::default()
-            };
-            let (f_el, f_d, _, _) = self.normal.on_overlap(&frame, &[g_t, g_n, 0.0]);
-            e.f_raw = f_el + f_d;
-            if !m.clipped {
-                (e.f_el, e.f_d) = (f_el, f_d);
+        let v = [s[GX], s[GY], s[W1], s[W2]];
+        let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
+        let mut e = Eval::default();
+        match self.geometry.frame(&q) {
+            Some(fr) => {
+                let normal = self.normal.on_pair(&fr, &v);
+                e.f_raw = normal.f_el + normal.f_d;
+                if !m.clipped {
+                    (e.f_el, e.f_d) = (normal.f_el, normal.f_d);
+                    (e.el, e.damp) = (normal.el, normal.damp);
+                }
+                (e.n, e.depth, e.area) = (fr.n, fr.depth, fr.area);
+                e.lever_t = fr.lever_t;
             }
-            e.area = o.area;
-            e.arms = [o.arm1, d - o.arm1];
+            None => {
+                // Apart: the depth is minus the gap (round bodies: at no cost), the normal the
+                // line of centres.
+                let d = q[0].hypot(q[1]);
+                e.n = [q[0] / d, q[1] / d];
+                e.depth = self.geometry.signed_depth(&q);
+            }
         }
-        e.v_t = g_t + e.arms[0] * s[W1] + e.arms[1] * s[W2];
+        let n = e.n;
+        let t = [n[1], -n[0]];
+        let (g_n, g_t) = (n[0] * g[0] + n[1] * g[1], t[0] * g[0] + t[1] * g[1]);
+        e.v_t = g_t + at(e.lever_t);
         let (k_xi, rate, ct) = law.spring(e.depth.max(0.0));
         e.trial = -k_xi * s[XI] - ct * e.v_t;
         let f_n = e.f_el + e.f_d;
@@ -124,18 +133,40 @@ impl<G: PairGeometry> PairOde<'_, G> {
             Tan::Slip(sg) => sg * self.mu * f_n,
             _ => 0.0,
         };
-        let f = [f_n * n[0] + e.f_t * t[0], f_n * n[1] + e.f_t * t[1]];
+        let tan = [
+            e.f_t * t[0],
+            e.f_t * t[1],
+            e.f_t * e.lever_t[0],
+            e.f_t * e.lever_t[1],
+        ];
+        let f: [f64; 4] = std::array::from_fn(|i| e.el[i] + e.damp[i] + tan[i]);
         ds[X] = g[0];
         ds[Y] = g[1];
         ds[GX] = f[0] * self.inv[0];
         ds[GY] = f[1] * self.inv[0];
         ds[4] = s[W1];
-        ds[W1] = e.arms[0] * e.f_t * self.inv[1];
+        ds[W1] = f[2] * self.inv[1];
         ds[6] = s[W2];
-        ds[W2] = e.arms[1] * e.f_t * self.inv[2];
-        ds[WN] = f_n * g_n;
+        ds[W2] = f[3] * self.inv[2];
+        ds[WN] = dot(&e.el, &v) + dot(&e.damp, &v);
         ds[WT] = e.f_t * e.v_t;
         e
+    }
+
+    /// The depth at state `s` and the rate at which it closes (> 0 while separating): along
+    /// the line of centres for round bodies, at the damping's point for bodies with corners.
+    pub(super) fn opening(&self, s: &State) -> (f64, f64) {
+        let q = [s[X], s[Y], s[4], s[6]];
+        if !G::CORNERS {
+            let d = q[0].hypot(q[1]);
+            return (self.geometry.reach() - d, (q[0] * s[GX] + q[1] * s[GY]) / d);
+        }
+        let Some(fr) = self.geometry.frame(&q) else {
+            return (0.0, 0.0);
+        };
+        let lever = fr.lever_rate_area;
+        let g_n = fr.n[0] * s[GX] + fr.n[1] * s[GY];
+        (fr.depth, g_n + lever[0] * s[W1] + lever[1] * s[W2])
     }
 
     pub(super) fn eval_new(&self, m: &Mode, s: &State) -> (State, Eval) {
@@ -146,19 +177,21 @@ impl<G: PairGeometry> PairOde<'_, G> {
 
     /// The events that can end a piece of mode `m`.
     pub(super) fn candidates(&self, m: &Mode) -> impl Iterator<Item = Event> {
-        let clip = if m.clipped {
-            Event::ClipOff
+        let apart = m.apart.then_some(Event::Touch);
+        let clip = if m.apart {
+            None
+        } else if m.clipped {
+            Some(Event::ClipOff)
         } else {
-            Event::ClipOn
+            Some(Event::ClipOn)
         };
         let tan = match m.tan {
             Tan::Stick => Some(Event::ToSlip),
             Tan::Slip(_) => Some(Event::ToStick),
             _ => None,
         };
-        [Some(Event::Separate), Some(clip), tan]
-            .into_iter()
-            .flatten()
+        let separate = (!m.apart).then_some(Event::Separate);
+        [apart, separate, clip, tan].into_iter().flatten()
     }
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
@@ -166,6 +199,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let e = self.eval_new(m, s).1;
         match ev {
             Event::Separate => -e.depth,
+            Event::Touch => e.depth,
             Event::ClipOn => -e.f_raw,
             Event::ClipOff => e.f_raw,
             Event::ToSlip => {

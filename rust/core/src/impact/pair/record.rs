@@ -7,7 +7,7 @@ use crate::model::{Initial, Pair};
 /// The normal at separation: the direction of the centres' line where they last were `reach`
 /// apart, found from the final state `q`, `v` by going back along the free flight since
 /// (no force acts once apart; a timed-out impact keeps its current direction).
-fn separation_normal(q: &Lanes, v: &Lanes, reach: f64) -> [f64; 2] {
+pub(super) fn separation_normal(q: &Lanes, v: &Lanes, reach: f64) -> [f64; 2] {
     let (x, y, gx, gy) = (q[0], q[1], v[0], v[1]);
     let (rg, g2, r2) = (x * gx + y * gy, gx * gx + gy * gy, x * x + y * y);
     let disc = rg * rg - g2 * (r2 - reach * reach);
@@ -22,13 +22,14 @@ fn separation_normal(q: &Lanes, v: &Lanes, reach: f64) -> [f64; 2] {
 }
 
 /// Completes a pair's record (section 17 of docs/model.md): the first-touch normal is +y and
-/// its tangent +x, g0 = (init.vx, init.vy); `qv` the final lanes.
+/// its tangent +x, g0 = (init.vx, init.vy); `qv` the final lanes, `y0` the centres' distance
+/// at first touch and `ns` the line of centres at separation.
 pub(super) fn close_pair(
     rec: &mut Record,
     pair: &Pair,
     init: &Initial,
     (q, v): (&Lanes, &Lanes),
-    reach: f64,
+    (y0, ns): (f64, [f64; 2]),
 ) {
     let (m1, m2, ms) = (pair.particle.mass, pair.m2, pair.m_star);
     let (r1, r2) = (pair.particle.r, pair.r2);
@@ -37,7 +38,6 @@ pub(super) fn close_pair(
     rec.energy_out = pair.kinetic_energy(v);
     rec.energy_residual =
         (rec.energy_out - rec.energy_in - rec.work_normal - rec.work_friction) / rec.energy_in;
-    let ns = separation_normal(q, v, reach);
     rec.e_n = -v[1] / g0[1];
     rec.e_n_sep = -(v[0] * ns[0] + v[1] * ns[1]) / g0[1];
     rec.normal_rotation_deg = (-ns[0]).atan2(ns[1]).to_degrees();
@@ -62,9 +62,9 @@ pub(super) fn close_pair(
     ];
     rec.momentum_residual = Some(p[0].hypot(p[1]) / (ms * speed));
     let (i1, i2) = (pair.particle.inertia, pair.i2);
-    let l_in = ms * (0.0 * g0[1] - reach * g0[0]) + i1 * init.omega + i2 * init.partner_omega;
+    let l_in = ms * (0.0 * g0[1] - y0 * g0[0]) + i1 * init.omega + i2 * init.partner_omega;
     let l_out = ms * (q[0] * v[1] - q[1] * v[0]) + i1 * v[2] + i2 * v[3];
-    rec.angular_momentum_residual = Some((l_out - l_in) / (ms * speed * reach));
+    rec.angular_momentum_residual = Some((l_out - l_in) / (ms * speed * (r1 + r2)));
     rec.timed_out = rec.stop != StopReason::Separated;
     rec.separated = !rec.timed_out;
 }

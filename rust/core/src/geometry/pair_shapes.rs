@@ -1,0 +1,417 @@
+//! Where a pair with corners meets (docs/model.md, section 17.7): a polygon with a polygon
+//! (parry's convex-convex intersection, as for a general obstacle) and a disc with a polygon
+//! (closed form: the polygon clipped by the circle, plus the circular segments its arcs cut).
+//!
+//! Everything is in the partner's frame: the partner's centre at the origin, the particle's at
+//! q = (x, y); each body turned by its own angle. As on the plate (section 3), the contact's
+//! chord joins the two points where the boundaries cross, the normal n is perpendicular to it
+//! (towards the particle), and the forces act at the overlap's centroid. Two facts make the
+//! area law's damping exact and keep angular momentum (section 17.7): moving the particle by
+//! dq changes the area by -l n.dq, and turning body i by dphi_i changes it by b_i dphi_i, with
+//! b_1 = (|p_a - q|^2 - |p_b - q|^2) / 2 and b_2 = (|p_b|^2 - |p_a|^2) / 2 from the chord's ends
+//! p_a, p_b (ordered along t = (n_y, -n_x)); b_1 + b_2 = l (q x n), so a rigid turn of the
+//! pair leaves the area unchanged.
+
+use super::pair::{PairFrame, PairGeometry, Springs};
+use super::parry::polygon_pair_overlap;
+use super::{Polygon, Shape};
+use disc_polygon::disc_polygon;
+use springs::{corner_springs, disc_spring};
+use std::cell::RefCell;
+
+/// One body of a pair as its contact sees it.
+#[derive(Debug, Clone, Copy)]
+pub enum PairBody<'a> {
+    /// A disc of radius r (m).
+    Disc(f64),
+    /// A convex polygon, vertices about its centroid.
+    Polygon(&'a Polygon),
+}
+
+impl PairBody<'_> {
+    fn circumradius(&self) -> f64 {
+        match self {
+            PairBody::Disc(r) => *r,
+            PairBody::Polygon(p) => p.circumradius(),
+        }
+    }
+}
+
+/// The overlap of a pair in general position, in the partner's frame.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ShapePatch {
+    /// Area (m^2).
+    pub area: f64,
+    /// Extent of the overlap along n (m): the pair's depth.
+    pub depth: f64,
+    /// Chord length l (m).
+    pub chord: f64,
+    /// Unit normal, perpendicular to the chord, from the partner towards the particle.
+    pub n: [f64; 2],
+    /// The overlap's centroid (m, relative to the partner's centre).
+    pub centroid: [f64; 2],
+    /// dA/dphi of the particle and of the partner (m^2 / rad).
+    pub b: [f64; 2],
+    /// The linear law's springs (empty unless the pair asks for them).
+    pub springs: Springs,
+}
+
+/// A pair of which at least one body has corners.
+#[derive(Debug, Clone, Copy)]
+pub struct ShapePair<'a> {
+    /// The particle.
+    pub particle: PairBody<'a>,
+    /// The partner.
+    pub partner: PairBody<'a>,
+    /// Whether the overlap carries the linear law's springs ([`ShapePatch::springs`]).
+    pub springs: bool,
+}
+
+/// The shortest chord taken for an overlap, in units of the round-off of the centres'
+/// coordinates.
+const MIN_CHORD_ULPS: f64 = 64.0;
+
+/// 2D cross product.
+#[inline(always)]
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+#[inline(always)]
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+#[inline(always)]
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// The vertices of `p` turned by `phi` and placed with the centroid at `at`.
+fn placed(p: &Polygon, at: [f64; 2], phi: f64) -> impl Iterator<Item = [f64; 2]> + '_ {
+    let (s, c) = phi.sin_cos();
+    p.vertices()
+        .iter()
+        .map(move |v| [at[0] + c * v.x - s * v.y, at[1] + s * v.x + c * v.y])
+}
+
+/// The placed vertices of a pair's two polygons.
+type PlacedPair = (Vec<[f64; 2]>, Vec<[f64; 2]>);
+
+thread_local! {
+    /// Two polygons' placed vertices (reused: the overlap runs every step).
+    static PLACED: RefCell<PlacedPair> = const { RefCell::new((Vec::new(), Vec::new())) };
+}
+
+impl<'a> ShapePair<'a> {
+    /// The pair of `particle` and `partner`; `None` when neither has corners (two discs or
+    /// spheres: [`crate::geometry::pair`]).
+    pub fn new(particle: &'a Shape, partner: &'a Shape) -> Option<Self> {
+        let body = |s: &'a Shape| match s {
+            Shape::Polygon(p) => Some(PairBody::Polygon(p)),
+            Shape::Disc { r } => Some(PairBody::Disc(*r)),
+            Shape::Sphere { .. } => None,
+        };
+        let pair = ShapePair {
+            particle: body(particle)?,
+            partner: body(partner)?,
+            springs: false,
+        };
+        let corners = |b: &PairBody| matches!(b, PairBody::Polygon(_));
+        (corners(&pair.particle) || corners(&pair.partner)).then_some(pair)
+    }
+
+    /// The sum of the circumradii: no contact beyond this centre distance.
+    pub fn reach(&self) -> f64 {
+        self.particle.circumradius() + self.partner.circumradius()
+    }
+
+    /// The overlap at lanes `q` = (x, y, phi1, phi2); `None` when apart (or touching in a
+    /// point).
+    pub fn patch(&self, q: &[f64; 4]) -> Option<ShapePatch> {
+        let at = [q[0], q[1]];
+        let springs = self.springs;
+        match (self.particle, self.partner) {
+            (PairBody::Polygon(a), PairBody::Polygon(b)) => PLACED.with(|cell| {
+                let (pa, pb) = &mut *cell.borrow_mut();
+                pa.clear();
+                pa.extend(placed(a, at, q[2]));
+                pb.clear();
+                pb.extend(placed(b, [0.0, 0.0], q[3]));
+                polygon_pair_overlap(
+                    pa.iter().copied(),
+                    pb.iter().copied(),
+                    self.reach(),
+                    |patch, points| {
+                        let mut p = assemble(at, patch.area, patch.centroid, patch.chord?, points)?;
+                        if springs {
+                            p.springs = corner_springs(pa, pb, points, at);
+                        }
+                        Some(p)
+                    },
+                )?
+            }),
+            (PairBody::Disc(r), PairBody::Polygon(b)) => {
+                let mut p = disc_polygon(at, r, placed(b, [0.0, 0.0], q[3]), at)?;
+                if springs {
+                    p.springs = disc_spring(
+                        at,
+                        r,
+                        &placed(b, [0.0, 0.0], q[3]).collect::<Vec<_>>(),
+                        at,
+                        1.0,
+                    );
+                }
+                Some(p)
+            }
+            (PairBody::Polygon(a), PairBody::Disc(r)) => {
+                let mut p = disc_polygon([0.0, 0.0], r, placed(a, at, q[2]), at)?;
+                if springs {
+                    p.springs = disc_spring(
+                        [0.0, 0.0],
+                        r,
+                        &placed(a, at, q[2]).collect::<Vec<_>>(),
+                        at,
+                        -1.0,
+                    );
+                }
+                Some(p)
+            }
+            (PairBody::Disc(_), PairBody::Disc(_)) => None,
+        }
+    }
+
+    /// The distance between the bodies at lanes `q` (m; 0 when they touch or overlap).
+    pub fn gap(&self, q: &[f64; 4]) -> f64 {
+        let at = [q[0], q[1]];
+        match (self.particle, self.partner) {
+            (PairBody::Polygon(a), PairBody::Polygon(b)) => {
+                let pa: Vec<[f64; 2]> = placed(a, at, q[2]).collect();
+                let pb: Vec<[f64; 2]> = placed(b, [0.0, 0.0], q[3]).collect();
+                if inside_any(&pa, &pb) || inside_any(&pb, &pa) {
+                    return 0.0;
+                }
+                point_polygon_distance(&pa, &pb).min(point_polygon_distance(&pb, &pa))
+            }
+            (PairBody::Disc(r), PairBody::Polygon(b)) => {
+                let pb: Vec<[f64; 2]> = placed(b, [0.0, 0.0], q[3]).collect();
+                (distance_to_polygon(at, &pb) - r).max(0.0)
+            }
+            (PairBody::Polygon(a), PairBody::Disc(r)) => {
+                let pa: Vec<[f64; 2]> = placed(a, at, q[2]).collect();
+                (distance_to_polygon([0.0, 0.0], &pa) - r).max(0.0)
+            }
+            (PairBody::Disc(r1), PairBody::Disc(r2)) => (at[0].hypot(at[1]) - r1 - r2).max(0.0),
+        }
+    }
+
+    /// The height of the particle's centre, straight above the partner's, at which the two
+    /// touch with orientations `phi1`, `phi2` (rad): the largest height at which a corner or a
+    /// disc rests on the other body's top (the first touch of section 17.7).
+    pub fn touch_height(&self, phi1: f64, phi2: f64) -> f64 {
+        let origin = [0.0, 0.0];
+        match (self.particle, self.partner) {
+            (PairBody::Polygon(a), PairBody::Polygon(b)) => {
+                let pa: Vec<[f64; 2]> = placed(a, origin, phi1).collect();
+                let pb: Vec<[f64; 2]> = placed(b, origin, phi2).collect();
+                // Corners of the particle over the partner's top, and the partner's corners
+                // under the particle's bottom (the particle seen from below: mirrored).
+                let flip = |p: &[[f64; 2]]| p.iter().map(|v| [-v[0], -v[1]]).collect::<Vec<_>>();
+                corners_over_top(&pa, &pb).max(corners_over_top(&flip(&pb), &flip(&pa)))
+            }
+            (PairBody::Disc(r), PairBody::Polygon(b)) => {
+                disc_over_top(r, &placed(b, origin, phi2).collect::<Vec<_>>())
+            }
+            (PairBody::Polygon(a), PairBody::Disc(r)) => {
+                // The disc under the particle: the particle's bottom seen from below.
+                let flipped: Vec<[f64; 2]> =
+                    placed(a, origin, phi1).map(|v| [-v[0], -v[1]]).collect();
+                disc_over_top(r, &flipped)
+            }
+            (PairBody::Disc(r1), PairBody::Disc(r2)) => r1 + r2,
+        }
+    }
+}
+
+impl PairGeometry for ShapePair<'_> {
+    const CORNERS: bool = true;
+
+    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
+        let p = self.patch(q)?;
+        // The contact's normal: the chord's, or under the linear law the direction of the
+        // springs' push, so that friction acts across the normal force.
+        let push = [p.springs.push[0], p.springs.push[1]];
+        let norm = push[0].hypot(push[1]);
+        let n = if self.springs && norm > 0.0 {
+            [push[0] / norm, push[1] / norm]
+        } else {
+            p.n
+        };
+        let (c, at) = (p.centroid, [q[0], q[1]]);
+        let t = [n[1], -n[0]];
+        // Each pair of levers sums to -(q x u), so that the torques cancel the orbit's
+        // (angular momentum); the partner's is taken from that sum, to the last bit.
+        let lever = |l1: f64, u: [f64; 2]| [l1, -l1 - cross(at, u)];
+        let arm = sub(c, at);
+        Some(PairFrame {
+            n,
+            depth: p.depth,
+            area: p.area,
+            chord: p.chord,
+            lever_area: lever(cross(arm, n), n),
+            lever_rate_area: lever(-p.b[0] / p.chord, n),
+            lever_t: lever(cross(arm, t), t),
+            springs: p.springs,
+        })
+    }
+
+    fn signed_depth(&self, q: &[f64; 4]) -> f64 {
+        match self.patch(q) {
+            Some(p) => p.depth,
+            None => -self.gap(q),
+        }
+    }
+
+    fn touch_height(&self, phi1: f64, phi2: f64) -> f64 {
+        ShapePair::touch_height(self, phi1, phi2)
+    }
+
+    fn reach(&self) -> f64 {
+        ShapePair::reach(self)
+    }
+}
+
+/// Whether any vertex of `a` lies inside (or on) the counter-clockwise convex polygon `b`.
+fn inside_any(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
+    a.iter().any(|&p| inside(p, b))
+}
+
+fn inside(p: [f64; 2], b: &[[f64; 2]]) -> bool {
+    let n = b.len();
+    (0..n).all(|j| cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) >= 0.0)
+}
+
+/// Distance from point `p` to segment a-b.
+fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
+    let (d, w) = (sub(b, a), sub(p, a));
+    let t = (dot(w, d) / dot(d, d)).clamp(0.0, 1.0);
+    (w[0] - t * d[0]).hypot(w[1] - t * d[1])
+}
+
+/// Distance from `p` to the boundary of polygon `b`.
+fn distance_to_polygon(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
+    if inside(p, b) {
+        return 0.0;
+    }
+    let n = b.len();
+    (0..n)
+        .map(|j| segment_distance(p, b[j], b[(j + 1) % n]))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The smallest distance from a vertex of `a` to the boundary of `b`.
+fn point_polygon_distance(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    a.iter()
+        .map(|&p| distance_to_polygon(p, b))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The largest height h at which a corner of `a` (vertices relative to its centre, placed at
+/// (0, h)) lies on the top of `b` (centred at the origin): over the corners above b's
+/// upward-facing edges.
+fn corners_over_top(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
+    let m = b.len();
+    let mut best = f64::NEG_INFINITY;
+    for j in 0..m {
+        let (p, q) = (b[j], b[(j + 1) % m]);
+        // Counter-clockwise: an edge going towards -x faces up.
+        if q[0] >= p[0] {
+            continue;
+        }
+        for v in a {
+            if v[0] <= p[0] && v[0] >= q[0] {
+                let y_edge = p[1] + (q[1] - p[1]) * (v[0] - p[0]) / (q[0] - p[0]);
+                best = best.max(y_edge - v[1]);
+            }
+        }
+    }
+    best
+}
+
+/// The largest height at which a disc of radius `r` centred at (0, h) touches polygon `b`
+/// (centred at the origin) from above: resting on a corner or tangent to an upward edge.
+fn disc_over_top(r: f64, b: &[[f64; 2]]) -> f64 {
+    let m = b.len();
+    let mut best = f64::NEG_INFINITY;
+    for j in 0..m {
+        let (p, q) = (b[j], b[(j + 1) % m]);
+        if p[0].abs() <= r {
+            best = best.max(p[1] + (r * r - p[0] * p[0]).sqrt());
+        }
+        let (dx, dy) = (q[0] - p[0], q[1] - p[1]);
+        let len = dx.hypot(dy);
+        let nu = [dy / len, -dx / len];
+        if nu[1] <= 0.0 {
+            continue;
+        }
+        // The centre at distance r from the edge's line, its foot inside the edge.
+        let h = (r + dot(nu, p)) / nu[1];
+        let foot = [-r * nu[0], h - r * nu[1]];
+        let t = dot(sub(foot, p), [dx, dy]) / (len * len);
+        if (0.0..=1.0).contains(&t) {
+            best = best.max(h);
+        }
+    }
+    best
+}
+
+/// The patch from the overlap's area, centroid, chord and vertices, the particle's centre at
+/// `q` (no springs).
+fn assemble(
+    q: [f64; 2],
+    area: f64,
+    centroid: [f64; 2],
+    [p0, p1]: [[f64; 2]; 2],
+    points: &[([f64; 2], bool)],
+) -> Option<ShapePatch> {
+    let d = sub(p1, p0);
+    let chord = d[0].hypot(d[1]);
+    // A chord at the round-off of the coordinates is a touch, not an overlap: its direction
+    // (the normal) would be noise.
+    let resolution = MIN_CHORD_ULPS * f64::EPSILON * (q[0].abs() + q[1].abs());
+    if !(chord > resolution && area > 0.0) {
+        return None;
+    }
+    let mut n = [-d[1] / chord, d[0] / chord];
+    if dot(n, sub(q, p0)) < 0.0 {
+        n = [-n[0], -n[1]];
+    }
+    // Order the chord's ends along t = (n_y, -n_x).
+    let t = [n[1], -n[0]];
+    let (pa, pb) = if dot(d, t) >= 0.0 { (p0, p1) } else { (p1, p0) };
+    let sq = |p: [f64; 2]| dot(p, p);
+    let b = [
+        0.5 * (sq(sub(pa, q)) - sq(sub(pb, q))),
+        0.5 * (sq(pb) - sq(pa)),
+    ];
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for &(x, _) in points {
+        let s = dot(n, x);
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    Some(ShapePatch {
+        area,
+        depth: (hi - lo).max(0.0),
+        chord,
+        n,
+        centroid,
+        b,
+        springs: Springs::default(),
+    })
+}
+
+mod disc_polygon;
+mod springs;
+#[cfg(test)]
+mod tests;

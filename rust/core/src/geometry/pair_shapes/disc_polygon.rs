@@ -1,0 +1,182 @@
+//! The overlap of a disc with a convex polygon in closed form (docs/model.md, 17.8): the
+//! polygon clipped by the circle, plus the circular segments its arcs cut beyond their chords.
+
+use super::{assemble, cross, dot, sub, ShapePatch};
+use crate::geometry::disc::disc_segment_at;
+use std::cell::RefCell;
+
+/// The disc-polygon overlap's buffers: the polygon relative to the circle's centre, the
+/// overlap polygon's vertices (crossings marked) and which of them are exits.
+#[derive(Default)]
+struct DiscScratch {
+    verts: Vec<[f64; 2]>,
+    points: Vec<([f64; 2], bool)>,
+    exits: Vec<bool>,
+}
+
+thread_local! {
+    /// The disc-polygon overlap's vertices (reused: the overlap runs every step).
+    static DISC_SCRATCH: RefCell<DiscScratch> = RefCell::new(DiscScratch::default());
+}
+
+/// The overlap of the disc of radius `r` centred at `c` with the convex polygon `poly`
+/// (counter-clockwise), `q` the particle's centre: the polygon's part inside the circle
+/// (its corners inside, and the points where its edges cross the circle), plus the circular
+/// segment each arc of the circle inside the polygon cuts off beyond its chord.
+pub(super) fn disc_polygon(
+    c: [f64; 2],
+    r: f64,
+    poly: impl Iterator<Item = [f64; 2]>,
+    q: [f64; 2],
+) -> Option<ShapePatch> {
+    DISC_SCRATCH.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let DiscScratch {
+            verts,
+            points,
+            exits,
+        } = &mut *buf;
+        verts.clear();
+        verts.extend(poly.map(|p| sub(p, c)));
+        points.clear();
+        exits.clear();
+        clip_by_circle(verts, r, points, exits);
+        if points.is_empty() {
+            // No edge reaches the circle: the disc lies inside the polygon, or apart.
+            return None;
+        }
+        let (mut area, mut moment) = shoelace(points);
+        let mut apexes = [[0.0; 2]; 4];
+        let mut n_apex = 0;
+        let k = points.len();
+        let mut chord: Option<[[f64; 2]; 2]> = None;
+        let mut best = -1.0;
+        for i in 0..k {
+            // An arc runs from an exit crossing to the next point, an entry crossing.
+            if !exits[i] {
+                continue;
+            }
+            let (exit, entry) = (points[i].0, points[(i + 1) % k].0);
+            let (seg_area, seg_centroid, apex, len2) = circular_segment(r, exit, entry);
+            moment[0] += seg_area * seg_centroid[0];
+            moment[1] += seg_area * seg_centroid[1];
+            area += seg_area;
+            if n_apex < apexes.len() {
+                apexes[n_apex] = apex;
+                n_apex += 1;
+            }
+            if len2 > best {
+                best = len2;
+                chord = Some([exit, entry]);
+            }
+        }
+        if !(area > 0.0) {
+            return None;
+        }
+        let centroid = [c[0] + moment[0] / area, c[1] + moment[1] / area];
+        let [a, b] = chord?;
+        for apex in &apexes[..n_apex] {
+            points.push((*apex, false));
+        }
+        for p in points.iter_mut() {
+            p.0 = [p.0[0] + c[0], p.0[1] + c[1]];
+        }
+        let chord = [[a[0] + c[0], a[1] + c[1]], [b[0] + c[0], b[1] + c[1]]];
+        assemble(q, area, centroid, chord, points)
+    })
+}
+
+/// The polygon `verts` (relative to the circle's centre) clipped by the circle of radius `r`:
+/// its corners inside and its edges' crossings of the circle, counter-clockwise, crossings
+/// marked, and in `exits` which points are crossings where the boundary leaves the circle.
+fn clip_by_circle(
+    verts: &[[f64; 2]],
+    r: f64,
+    out: &mut Vec<([f64; 2], bool)>,
+    exits: &mut Vec<bool>,
+) {
+    let n = verts.len();
+    for j in 0..n {
+        let (p, q) = (verts[j], verts[(j + 1) % n]);
+        let d = sub(q, p);
+        // |p + t d|^2 = r^2: t = (-b -+ sqrt(b^2 - a c)) / a with b = p.d.
+        let (a, b, cc) = (dot(d, d), dot(p, d), dot(p, p) - r * r);
+        let disc = b * b - a * cc;
+        if !(disc > 0.0) {
+            continue;
+        }
+        let s = disc.sqrt();
+        // Stable roots: the larger in magnitude first.
+        let big = -b - s.copysign(b);
+        let (mut t0, mut t1) = (big / a, cc / big);
+        if t0 > t1 {
+            std::mem::swap(&mut t0, &mut t1);
+        }
+        if t1 <= 0.0 || t0 >= 1.0 {
+            continue;
+        }
+        let at = |t: f64| [p[0] + t * d[0], p[1] + t * d[1]];
+        if t0 > 0.0 {
+            out.push((at(t0), true));
+            exits.push(false);
+        }
+        if t1 < 1.0 {
+            out.push((at(t1), true));
+            exits.push(true);
+        } else {
+            out.push((q, false));
+            exits.push(false);
+        }
+    }
+}
+
+/// Area and first moment (relative to the frame's origin) of the polygon through `points`,
+/// summed relative to its first vertex so that slivers keep their precision.
+fn shoelace(points: &[([f64; 2], bool)]) -> (f64, [f64; 2]) {
+    let o = points[0].0;
+    let (mut a2, mut mx, mut my) = (0.0, 0.0, 0.0);
+    let mut prev = [0.0, 0.0];
+    for &(p, _) in &points[1..] {
+        let r = sub(p, o);
+        let w = cross(prev, r);
+        a2 += w;
+        mx += (prev[0] + r[0]) * w;
+        my += (prev[1] + r[1]) * w;
+        prev = r;
+    }
+    let area = 0.5 * a2;
+    if a2 == 0.0 {
+        return (0.0, [0.0, 0.0]);
+    }
+    (area, [area * o[0] + mx / 6.0, area * o[1] + my / 6.0])
+}
+
+/// The circular segment between the chord exit -> entry of a circle of radius `r` (centre at
+/// the origin) and the arc from exit counter-clockwise to entry (on the chord's right): its
+/// area, centroid, the arc's apex and the squared chord.
+fn circular_segment(r: f64, exit: [f64; 2], entry: [f64; 2]) -> (f64, [f64; 2], [f64; 2], f64) {
+    let d = sub(entry, exit);
+    let len2 = dot(d, d);
+    let len = len2.sqrt();
+    // Unit normal on the chord's right, towards the arc.
+    let u = [d[1] / len, -d[0] / len];
+    let half2 = 0.25 * len2;
+    let minor = half2 / (r + (r * r - half2).max(0.0).sqrt());
+    // The centre on the chord's left: the minor segment; else the major one.
+    let h = if cross(exit, entry) >= 0.0 {
+        minor
+    } else {
+        2.0 * r - minor
+    };
+    let seg = disc_segment_at(r, r - h, h);
+    let below = (r - h) - seg.cy;
+    // The apex as the chord's midpoint plus the segment's height: its distance from the
+    // chord stays h when a nearly closed chord leaves u to round-off.
+    let mid = [0.5 * (exit[0] + entry[0]), 0.5 * (exit[1] + entry[1])];
+    (
+        seg.area,
+        [below * u[0], below * u[1]],
+        [mid[0] + h * u[0], mid[1] + h * u[1]],
+        len2,
+    )
+}

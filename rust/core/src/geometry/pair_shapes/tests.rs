@@ -1,0 +1,225 @@
+use super::*;
+use crate::geometry::disc_segment_at;
+use std::f64::consts::PI;
+
+fn square(r: f64) -> Shape {
+    Shape::Polygon(Polygon::regular(r, 4).unwrap())
+}
+
+fn ngon(r: f64, n: usize) -> Shape {
+    Shape::Polygon(Polygon::regular(r, n).unwrap())
+}
+
+/// Area of the overlap by counting a fine grid's points inside both bodies, over a box of
+/// half-width `half` around `centre`.
+fn grid_area(pair: &ShapePair, q: &[f64; 4], centre: [f64; 2], half: f64) -> f64 {
+    let body_pts = |b: PairBody, at: [f64; 2], phi: f64| -> Box<dyn Fn([f64; 2]) -> bool> {
+        match b {
+            PairBody::Disc(r) => {
+                Box::new(move |p: [f64; 2]| (p[0] - at[0]).hypot(p[1] - at[1]) <= r)
+            }
+            PairBody::Polygon(poly) => {
+                let v: Vec<[f64; 2]> = placed(poly, at, phi).collect();
+                Box::new(move |p: [f64; 2]| inside(p, &v))
+            }
+        }
+    };
+    let in1 = body_pts(pair.particle, [q[0], q[1]], q[2]);
+    let in2 = body_pts(pair.partner, [0.0, 0.0], q[3]);
+    let n = 1500;
+    let h = 2.0 * half / n as f64;
+    let mut count = 0usize;
+    for i in 0..n {
+        for j in 0..n {
+            let p = [
+                centre[0] - half + (i as f64 + 0.5) * h,
+                centre[1] - half + (j as f64 + 0.5) * h,
+            ];
+            if in1(p) && in2(p) {
+                count += 1;
+            }
+        }
+    }
+    count as f64 * h * h
+}
+
+/// The particle's touch height above the partner at horizontal offset `x`, by bisection on
+/// the gap.
+fn touch_at(pair: &ShapePair, x: f64, phi1: f64, phi2: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0, pair.reach());
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if pair.gap(&[x, mid, phi1, phi2]) > 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}
+
+/// Configurations of each pairing at a moderate overlap: corners into faces, faces on
+/// corners, a disc on a face and on a corner.
+fn cases() -> Vec<(Shape, Shape, [f64; 4])> {
+    let (r, r2) = (0.01, 0.013);
+    let mut out = Vec::new();
+    for (a, b) in [
+        (square(r), ngon(r2, 5)),
+        (ngon(r, 6), ngon(r2, 3)),
+        (Shape::Disc { r }, ngon(r2, 5)),
+        (ngon(r, 7), Shape::Disc { r: r2 }),
+    ] {
+        for (phi1, phi2, x) in [(0.3, 1.1, 0.001), (1.0, 0.2, -0.002), (2.0, 2.5, 0.0)] {
+            let pair = ShapePair::new(&a, &b).unwrap();
+            let y = touch_at(&pair, x, phi1, phi2) - 0.04 * r;
+            out.push((a.clone(), b.clone(), [x, y, phi1, phi2]));
+        }
+    }
+    out
+}
+
+#[test]
+fn area_matches_a_grid_count() {
+    for (a, b, q) in cases() {
+        let pair = ShapePair::new(&a, &b).unwrap();
+        let Some(p) = pair.patch(&q) else {
+            panic!(
+                "no overlap at {q:?} ({:?} / {:?})",
+                pair.particle, pair.partner
+            )
+        };
+        let grid = grid_area(&pair, &q, p.centroid, 2.0 * p.chord.max(p.depth));
+        assert!(
+            (p.area - grid).abs() < 2e-3 * grid,
+            "{q:?}: {} vs grid {grid}",
+            p.area
+        );
+    }
+}
+
+/// The identities the damping and the torques rest on (module docs): dA/dq = -l n and
+/// dA/dphi_i = b_i, against central differences; b_1 + b_2 = l (q x n).
+#[test]
+fn area_rates_are_the_chord_and_the_b_terms() {
+    for (a, b, q) in cases() {
+        let pair = ShapePair::new(&a, &b).unwrap();
+        let p = pair.patch(&q).unwrap();
+        let area = |k: usize, h: f64| {
+            let mut qq = q;
+            qq[k] += h;
+            pair.patch(&qq).unwrap().area
+        };
+        let scale = p.chord * 1e-3 * 0.01;
+        for (k, expect) in [
+            (0, -p.chord * p.n[0]),
+            (1, -p.chord * p.n[1]),
+            (2, p.b[0]),
+            (3, p.b[1]),
+        ] {
+            let h = if k < 2 { 1e-8 } else { 1e-6 };
+            let fd = (area(k, h) - area(k, -h)) / (2.0 * h);
+            assert!(
+                (fd - expect).abs() < 1e-4 * p.chord.max(scale) * if k < 2 { 1.0 } else { 0.01 },
+                "{q:?} lane {k}: fd {fd:e} vs {expect:e}"
+            );
+        }
+        let sum = p.b[0] + p.b[1];
+        let expect = p.chord * cross([q[0], q[1]], p.n);
+        assert!(
+            (sum - expect).abs() < 1e-9 * 0.01 * p.chord,
+            "{sum:e} vs {expect:e}"
+        );
+    }
+}
+
+/// A disc on a polygon's face is the disc on the plate: the same segment, its centroid on
+/// the face's normal, the normal the face's.
+#[test]
+fn disc_on_a_face_is_the_plate_segment() {
+    let (r, r2) = (0.01, 0.02);
+    let b = square(r2);
+    let a = Shape::Disc { r };
+    let mut pair = ShapePair::new(&a, &b).unwrap();
+    pair.springs = true;
+    // Square turned by 45 degrees: its top face at y = r2 / sqrt 2.
+    let top = r2 / 2f64.sqrt();
+    for depth in [1e-9, 1e-6, 1e-4, 2e-3] {
+        let q = [0.001, top + r - depth, 0.7, PI / 4.0];
+        let p = pair.patch(&q).unwrap();
+        let seg = disc_segment_at(r, r - depth, depth);
+        // Round-off: the crossings' half chord carries eps r / depth of relative error.
+        let tol = 8.0 * f64::EPSILON * (r / depth).max(1.0);
+        assert!((p.area - seg.area).abs() < tol * seg.area, "{depth}: {p:?}");
+        assert!((p.n[0]).abs() < 1e-12 && (p.n[1] - 1.0).abs() < 1e-12);
+        assert!((p.depth - depth).abs() < tol * depth);
+        assert!((p.centroid[0] - 0.001).abs() < 1e-12);
+        assert!(
+            p.b[0].abs() < 1e-12 * r * r,
+            "a disc's turn leaves the area: {:e}",
+            p.b[0]
+        );
+        assert!((p.springs.count - 1.0).abs() < 1e-12);
+        assert!((p.springs.depth - depth).abs() < tol * depth);
+    }
+}
+
+/// Swapping particle and partner (and mirroring through the partner's centre) leaves the
+/// overlap: the same area and chord, the normal reversed.
+#[test]
+fn exchange_gives_the_same_overlap() {
+    for (a, b, q) in cases() {
+        let p = ShapePair::new(&a, &b).unwrap().patch(&q).unwrap();
+        let swapped = ShapePair::new(&b, &a).unwrap();
+        let q2 = [-q[0], -q[1], q[3], q[2]];
+        let s = swapped.patch(&q2).unwrap();
+        assert!((p.area - s.area).abs() < 1e-9 * p.area, "{q:?}");
+        assert!((p.chord - s.chord).abs() < 1e-9 * p.chord);
+        assert!((p.n[0] + s.n[0]).abs() < 1e-9 && (p.n[1] + s.n[1]).abs() < 1e-9);
+        assert!((p.depth - s.depth).abs() < 1e-9 * p.depth);
+    }
+}
+
+/// At the touch height the bodies touch: a hair lower they overlap, a hair higher they are
+/// apart by about the hair.
+#[test]
+fn touch_height_is_where_they_touch() {
+    for (a, b, q) in cases() {
+        let pair = ShapePair::new(&a, &b).unwrap();
+        let y0 = pair.touch_height(q[2], q[3]);
+        let hair = 1e-9 * pair.reach();
+        assert!(pair.patch(&[0.0, y0 - hair, q[2], q[3]]).is_some(), "{q:?}");
+        let gap = pair.gap(&[0.0, y0 + hair, q[2], q[3]]);
+        assert!(
+            gap > 0.0 && gap <= hair * (1.0 + 1e-6),
+            "{q:?}: gap {gap:e}"
+        );
+    }
+}
+
+/// The vertex springs are the gradient of their potential kn sum d_i^2 / 2 (Cundall's
+/// vertex-edge contacts conserve energy while each keeps its edge): the push on every lane
+/// against central differences of the potential.
+#[test]
+fn springs_push_down_their_potential() {
+    for (a, b, q) in cases() {
+        let mut pair = ShapePair::new(&a, &b).unwrap();
+        pair.springs = true;
+        let p = pair.patch(&q).unwrap();
+        assert!(p.springs.count >= 1.0, "{q:?}");
+        let potential = |k: usize, h: f64| {
+            let mut qq = q;
+            qq[k] += h;
+            pair.patch(&qq).unwrap().springs.potential
+        };
+        for k in 0..4 {
+            let h = if k < 2 { 1e-9 } else { 1e-7 };
+            let fd = -(potential(k, h) - potential(k, -h)) / (2.0 * h);
+            let push = p.springs.push[k];
+            let scale = p.springs.depth * if k < 2 { 1.0 } else { 0.01 };
+            assert!(
+                (fd - push).abs() < 1e-5 * scale,
+                "{q:?} lane {k}: {fd:e} vs {push:e}"
+            );
+        }
+    }
+}
