@@ -177,7 +177,8 @@ class Scene:
                     "partner_r": nan, "partner_phi0_deg": nan, "partner_omega_in": 0.0}
         if isinstance(shape, ConvexPolygon):
             raise _engine.RestitutionError("partner", "ConvexPolygon",
-                                           "a Disc partner for a Disc particle or a Sphere for a Sphere")
+                                           "a Disc, RegularPolygon or Sphere (a ConvexPolygon partner is not "
+                                           "carried by the engine's columns yet: use a RegularPolygon)")
         return {"partner_body": float(_engine.code("partner_body", "sphere" if isinstance(shape, Sphere) else "prism")),
                 "partner_n": float(shape.n), "partner_r": float(shape.r),
                 "partner_phi0_deg": _engine.real("partner_phi0_deg", shape.phi0_deg), "partner_omega_in": 0.0}

@@ -9,19 +9,28 @@ from pathlib import Path
 
 NAME = "pairs"
 HELP = ("two discs colliding: e_n (first-touch normal) and e_n_sep against theta, where e_n turns negative, "
-        "against Müller, Krengel & Pöschel's criterion (table, figure, report.md)")
+        "against Müller, Krengel & Pöschel's criterion; and two polygons at random orientations "
+        "(tables, figures, report.md)")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--out", type=Path, default=Path("results/pairs"),
                    help="output folder (default: results/pairs)")
+    p.add_argument("--draws", type=int, default=48,
+                   help="orientation draws per angle of the polygons' map (default: 48; 0 skips it)")
 
 
 def run(args: argparse.Namespace) -> int:
     from ..study.pair_map import write_map
+    from ..study.polygon_pair_map import write_polygon_map
 
     start = time.perf_counter()
     paths = write_map(args.out)
+    if args.draws > 0:
+        more, text = write_polygon_map(args.out, draws=args.draws)
+        paths += more
+        with (args.out / "report.md").open("a") as f:
+            f.write(text)
     print((args.out / "report.md").read_text())
     print(f"pairs: {time.perf_counter() - start:.1f} s; wrote {', '.join(str(p) for p in paths)}")
     return 0
