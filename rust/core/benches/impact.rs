@@ -8,7 +8,8 @@
 //! only the summary (the filter matches no criterion benchmark). Targets (issues 3 and 4): <= 50 ns per step for the exact disc,
 //! <= 1 us per step for the 120-gon. The Hertz-Mindlin sphere (Chung & Ooi's Test 4 at 45 deg,
 //! its own initial state) is measured in the same run; goal (issue 16): within 1.5x the disc.
-//! So are two preset discs colliding (issue 28): a pair's step within 1.5x the plate's.
+//! So are two preset discs colliding (issue 28): a pair's step within 1.5x the plate's; and
+//! polygon pairs through parry's intersection, each against its polygon on the plate.
 //!
 //! The group `impact_overhead` times what every impact pays outside its steps (issue 13: a few
 //! microseconds at most): `Model::new` (validation and the time-step bound) and the estimate of
@@ -63,6 +64,25 @@ fn configurations() -> Vec<(&'static str, Scene, Initial)> {
         partner: Some(Partner::of(Shape::Disc { r: 0.02 })),
         ..disc.clone()
     };
+    // Polygon pairs (issue 28: parry's convex-convex intersection against the plate's
+    // half-plane clip): two study 120-gons, two 12-gons, a disc on a 12-gon.
+    let twelve = Shape::regular_polygon(0.01, 12).expect("valid 12-gon");
+    let gon12 = Scene {
+        shape: twelve.clone(),
+        ..disc.clone()
+    };
+    let gon_pair = Scene {
+        partner: Some(Partner::of(gon.shape.clone())),
+        ..gon.clone()
+    };
+    let gon12_pair = Scene {
+        partner: Some(Partner::of(twelve.clone())),
+        ..gon12.clone()
+    };
+    let disc_gon12 = Scene {
+        partner: Some(Partner::of(twelve)),
+        ..disc.clone()
+    };
     let p = paper_initial();
     let s = Initial::from_angle(3.9, 45.0, 0.0, 0.0);
     let p2 = Initial::from_angle(2.0 * 0.0357, 45.0, 0.0, 0.0);
@@ -80,6 +100,10 @@ fn configurations() -> Vec<(&'static str, Scene, Initial)> {
         ("pair_gear5", pair.clone(), p2),
         ("pair_verlet", verlet(&pair), p2),
         ("pair2r_gear5", unequal, p2),
+        ("12gon_gear5", gon12, p),
+        ("12gon_pair_gear5", gon12_pair, p2),
+        ("120gon_pair_gear5", gon_pair, p2),
+        ("disc_12gon_pair_gear5", disc_gon12, p2),
     ]
 }
 
@@ -110,7 +134,7 @@ fn bench_overhead(c: &mut Criterion) {
         group.bench_function(format!("{shape}_model_new"), |b| {
             b.iter(|| Model::new(black_box(&scene)).expect("valid"))
         });
-        if shape != "sphere" && shape != "pair" {
+        if shape != "sphere" && !shape.contains("pair") {
             let model = Model::new(&scene).expect("valid");
             group.bench_function(format!("{shape}_estimate_max_depth"), |b| {
                 b.iter(|| estimate_max_depth(black_box(&model), black_box(&p)).expect("valid"))
@@ -153,17 +177,22 @@ fn summary() {
         "{:<14} {:>7} {:>12} {:>10}",
         "configuration", "steps", "us/impact", "ns/step"
     );
-    let mut disc_gear5_ns = None;
+    let mut measured = std::collections::BTreeMap::new();
     for (name, scene, init) in configurations() {
         let steps = steps_of(&scene, &init);
         let t = time_per_impact(&scene, &init);
         let ns_step = t.as_secs_f64() * 1e9 / steps as f64;
-        if name == "disc_gear5" {
-            disc_gear5_ns = Some(ns_step);
-        }
-        let ratio = disc_gear5_ns.map_or(String::new(), |d| {
-            format!("  ({:.2}x disc_gear5)", ns_step / d)
-        });
+        measured.insert(name, ns_step);
+        // A polygon pair against its polygon on the plate (the half-plane clip), the rest
+        // against the disc on the plate.
+        let base = match name {
+            "12gon_pair_gear5" | "disc_12gon_pair_gear5" => "12gon_gear5",
+            "120gon_pair_gear5" => "120gon_gear5",
+            _ => "disc_gear5",
+        };
+        let ratio = measured
+            .get(base)
+            .map_or(String::new(), |d| format!("  ({:.2}x {base})", ns_step / d));
         println!(
             "{name:<14} {steps:>7} {:>12.2} {ns_step:>10.1}{ratio}",
             t.as_secs_f64() * 1e6
