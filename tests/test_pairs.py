@@ -197,3 +197,15 @@ def test_polygon_map_gives_a_distribution_of_e_n_per_angle(tmp_path) -> None:
     assert (steep["p_negative"].to_numpy() < grazing["p_negative"].to_numpy()).all()
     assert (steep["e_n_median"] > 0.0).all()
     assert "theta_half" in text and paths[2].stat().st_size > 20_000
+
+
+def test_polygon_pairs_sweep_and_draw_their_orientations() -> None:
+    """The partner's corners and orientation are axes of a sweep and draws of an ensemble:
+    every case runs, and turning the partner by a full 360/n changes nothing."""
+    s = rs.Scene(shape=rs.RegularPolygon(0.01, 6), partner=rs.RegularPolygon(0.01, 6), integrator="gear5")
+    df = rs.sweep(s, theta_deg=[30.0], partner_phi0_deg=[10.0, 70.0], partner_n=[5, 6], progress=False)
+    assert df.height == 4 and df["e_n"].is_finite().all()
+    six = df.filter(pl.col("partner_n") == 6).sort("partner_phi0_deg")["e_n"]
+    assert six[0] == pytest.approx(six[1], abs=1e-9)
+    e = rs.ensemble(s, 16, vary={"partner_phi0_deg": rs.Uniform(0.0, 360.0)}, seed=3, theta_deg=[20.0], progress=False)
+    assert e.samples["partner_phi0_deg"].n_unique() == 16 and e.samples["e_n"].is_finite().all()
