@@ -166,27 +166,36 @@ fn cap_depths(r1: f64, r2: f64, d: f64, delta: f64) -> (f64, f64) {
     (half * (r2 + d - r1), half * (r1 + d - r2))
 }
 
-impl PairGeometry for DiscPair {
-    const CORNERS: bool = false;
+/// A round pairing's geometry: everything follows from the centres' distance and its
+/// `overlap` there (`r1`, `r2`, `linear` fields and an `overlap(d)` method).
+macro_rules! round_pair_geometry {
+    ($pair:ty) => {
+        impl PairGeometry for $pair {
+            const CORNERS: bool = false;
 
-    #[inline(always)]
-    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
-        round_frame(q, self.linear, |d| self.overlap(d))
-    }
+            #[inline(always)]
+            fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
+                round_frame(q, self.linear, |d| self.overlap(d))
+            }
 
-    fn signed_depth(&self, q: &[f64; 4]) -> f64 {
-        // sqrt, not hypot (see `round_frame`): the fixed-step loop asks it every step.
-        self.r1 + self.r2 - (q[0] * q[0] + q[1] * q[1]).sqrt()
-    }
+            fn signed_depth(&self, q: &[f64; 4]) -> f64 {
+                // sqrt, not hypot (see `round_frame`): the fixed-step loop asks it every step.
+                self.r1 + self.r2 - (q[0] * q[0] + q[1] * q[1]).sqrt()
+            }
 
-    fn touch_height(&self, _phi1: f64, _phi2: f64) -> f64 {
-        self.r1 + self.r2
-    }
+            fn touch_height(&self, _phi1: f64, _phi2: f64) -> f64 {
+                self.r1 + self.r2
+            }
 
-    fn reach(&self) -> f64 {
-        self.r1 + self.r2
-    }
+            fn reach(&self) -> f64 {
+                self.r1 + self.r2
+            }
+        }
+    };
 }
+
+round_pair_geometry!(DiscPair);
+round_pair_geometry!(SpherePair);
 
 impl DiscPair {
     /// The lens at centre distance `d`; `None` when apart.
@@ -237,28 +246,6 @@ pub struct SpherePair {
     pub r2: f64,
     /// Whether the frame carries the linear law's spring (its other laws do without).
     pub linear: bool,
-}
-
-impl PairGeometry for SpherePair {
-    const CORNERS: bool = false;
-
-    #[inline(always)]
-    fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
-        round_frame(q, self.linear, |d| self.overlap(d))
-    }
-
-    fn signed_depth(&self, q: &[f64; 4]) -> f64 {
-        // sqrt, not hypot (see `round_frame`): the fixed-step loop asks it every step.
-        self.r1 + self.r2 - (q[0] * q[0] + q[1] * q[1]).sqrt()
-    }
-
-    fn touch_height(&self, _phi1: f64, _phi2: f64) -> f64 {
-        self.r1 + self.r2
-    }
-
-    fn reach(&self) -> f64 {
-        self.r1 + self.r2
-    }
 }
 
 impl SpherePair {
