@@ -86,7 +86,6 @@ def test_sphere_pairs_run_the_hertz_law() -> None:
 
 
 @pytest.mark.parametrize(("changes", "name"), [
-    ({"partner": rs.ConvexPolygon(((0.01, 0.0), (0.0, 0.01), (-0.01, -0.005)))}, "partner"),
     ({"partner": rs.Sphere(0.01)}, "partner"),
     ({"partner": rs.RegularPolygon(0.01, 6), "normal_law": "linear", "integrator": "adaptive"}, "integrator"),
     ({"partner": rs.Disc(0.01), "partner_rho": -1.0}, "partner_rho"),
@@ -209,3 +208,38 @@ def test_polygon_pairs_sweep_and_draw_their_orientations() -> None:
     assert six[0] == pytest.approx(six[1], abs=1e-9)
     e = rs.ensemble(s, 16, vary={"partner_phi0_deg": rs.Uniform(0.0, 360.0)}, seed=3, theta_deg=[20.0], progress=False)
     assert e.samples["partner_phi0_deg"].n_unique() == 16 and e.samples["e_n"].is_finite().all()
+
+
+def test_convex_polygon_partners_are_their_vertices() -> None:
+    """A ConvexPolygon partner carries its own vertices to the engine: given a hexagon's, it is
+    the RegularPolygon hexagon (the same record to round-off), and any convex partner runs with
+    momentum kept; its vertex count is not a sweep axis."""
+    hexagon = rs.RegularPolygon(0.01, 6, 20.0)
+    corners = [(0.01 * math.cos(math.radians(60 * k)), 0.01 * math.sin(math.radians(60 * k))) for k in range(6)]
+    convex = rs.ConvexPolygon(tuple(corners), phi0_deg=20.0)
+    base = rs.Scene(shape=rs.RegularPolygon(0.01, 5, 10.0), mu=0.4, gamma=0.2)
+    a = rs.simulate(base.replace(partner=hexagon), 35.0, omega_in=2.0)
+    b = rs.simulate(base.replace(partner=convex), 35.0, omega_in=2.0)
+    for name in ("e_n", "e_t", "e_kin", "omega_out", "partner_omega_out", "contact_time"):
+        assert getattr(b, name) == pytest.approx(getattr(a, name), rel=1e-9, abs=1e-12), name
+    tri = rs.ConvexPolygon(((0.01, 0.0), (-0.004, 0.009), (-0.006, -0.007)))
+    r = rs.simulate(rs.Scene(shape=tri, partner=tri, mu=0.3), 40.0, omega_in=1.0)
+    assert r.separated and r.momentum_residual < 1e-12 and abs(r.angular_momentum_residual) < 1e-9
+    with pytest.raises(ValueError, match="partner_n"):
+        rs.sweep(base.replace(partner=convex), theta_deg=[30.0], partner_n=[5, 6], progress=False)
+
+
+def test_convex_partner_round_trips_through_a_config_and_the_digest_sees_it() -> None:
+    """A ConvexPolygon partner is a [scene.partner] table that reads back to the same scene,
+    and the dataset digest tells it from the RegularPolygon with the same corners."""
+    from restitution.runs.config import spec_from_dict, spec_to_dict
+    from restitution.runs.dataset import make_manifest
+    from restitution.runs.sweep import SweepSpec
+
+    corners = tuple((0.01 * math.cos(math.radians(60 * k)), 0.01 * math.sin(math.radians(60 * k))) for k in range(6))
+    convex = rs.Scene(partner=rs.ConvexPolygon(corners, phi0_deg=5.0), integrator="gear5")
+    spec = SweepSpec(convex, axes={"theta_deg": [30.0, 60.0]})
+    back, _ = spec_from_dict(spec_to_dict(spec))
+    assert back.scene == convex
+    regular = SweepSpec(convex.replace(partner=rs.RegularPolygon(0.01, 6, 5.0)), axes={"theta_deg": [30.0, 60.0]})
+    assert make_manifest(spec, 1)["spec_sha256"] != make_manifest(regular, 1)["spec_sha256"]

@@ -38,24 +38,39 @@ def run_cases(
     columns: _Columns,
     vertices: npt.NDArray[np.float64] | None,
     threads: int,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
 ) -> dict[str, np.ndarray]:
     """One impact per row of ``columns``; returns record columns (GIL released)."""
 
-def check_cases(columns: _Columns, vertices: npt.NDArray[np.float64] | None, threads: int = 0) -> None:
+def check_cases(
+    columns: _Columns,
+    vertices: npt.NDArray[np.float64] | None,
+    threads: int = 0,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
+) -> None:
     """Every rule of every case, without running it; raises naming the first bad case."""
 
-def run_case(row: Sequence[float], vertices: npt.NDArray[np.float64] | None) -> tuple[Any, ...]:
+def run_case(
+    row: Sequence[float],
+    vertices: npt.NDArray[np.float64] | None,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
+) -> tuple[Any, ...]:
     """The one impact of ``row`` (a value per ``CASE_COLUMNS`` name, in order), on the calling
     thread with the GIL released: its record's values in ``RECORD_COLUMNS`` order (None where
     undefined)."""
 
 def trace_case(
-    row: Sequence[float], vertices: npt.NDArray[np.float64] | None
+    row: Sequence[float],
+    vertices: npt.NDArray[np.float64] | None,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
 ) -> tuple[tuple[Any, ...], dict[str, np.ndarray]]:
     """The one impact of ``row``, as ``run_case``: (its record's values, per-step trace columns)."""
 
 def max_dt_factor_for(
-    columns: _Columns, vertices: npt.NDArray[np.float64] | None, explain: bool = False
+    columns: _Columns,
+    vertices: npt.NDArray[np.float64] | None,
+    explain: bool = False,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[str] | None]:
     """Largest accepted dt_factor of each case: its integrator's stability bound for that case's
     stiffness and damping (the ``dt_factor`` column itself is ignored); with ``explain``, also

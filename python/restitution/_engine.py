@@ -102,33 +102,49 @@ def with_values(base: tuple[float, ...], **values: float) -> list[float]:
     return out
 
 
-def check(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None) -> None:
+#: A scene's vertex templates (``Scene.template_vertices``): the particle's convex polygon's
+#: unit-circumradius vertices or None, or, with a ConvexPolygon partner, the pair (particle's or
+#: None, partner's).
+Templates = Any
+
+
+def _split(vertices: Templates) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """(the particle's vertices, the partner's) of ``vertices``."""
+    return vertices if isinstance(vertices, tuple) else (vertices, None)
+
+
+def check(cols: Mapping[str, np.ndarray], vertices: Templates) -> None:
     """Every rule of every case, without running it: raises :class:`RestitutionError` naming
     the parameter, its value and the case (the row of ``cols``)."""
-    _core.check_cases(cols, vertices)
+    own, partner = _split(vertices)
+    _core.check_cases(cols, own, partner_vertices=partner)
 
 
-def run(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None, threads: int) -> dict[str, np.ndarray]:
+def run(cols: Mapping[str, np.ndarray], vertices: Templates, threads: int) -> dict[str, np.ndarray]:
     """Runs one impact per row (GIL released); the record columns."""
-    return dict(_core.run_cases(cols, vertices, threads))
+    own, partner = _split(vertices)
+    return dict(_core.run_cases(cols, own, threads, partner_vertices=partner))
 
 
-def run_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[Any, ...]:
+def run_one(row: Sequence[float], vertices: Templates) -> tuple[Any, ...]:
     """Runs the one case of ``row`` (GIL released, on this thread): its record's values in
     ``RECORD_COLUMNS`` order, None where undefined."""
-    return _core.run_case(row, vertices)
+    own, partner = _split(vertices)
+    return _core.run_case(row, own, partner_vertices=partner)
 
 
-def trace_one(row: Sequence[float], vertices: np.ndarray | None) -> tuple[tuple[Any, ...], pl.DataFrame]:
+def trace_one(row: Sequence[float], vertices: Templates) -> tuple[tuple[Any, ...], pl.DataFrame]:
     """Runs the one case of ``row``: (its record's values as :func:`run_one`, per-step trace frame)."""
-    values, tr = _core.trace_case(row, vertices)
+    own, partner = _split(vertices)
+    values, tr = _core.trace_case(row, own, partner_vertices=partner)
     return values, pl.DataFrame({name: tr[name] for name in TRACE_COLUMNS})
 
 
-def dt_bounds(cols: Mapping[str, np.ndarray], vertices: np.ndarray | None,
+def dt_bounds(cols: Mapping[str, np.ndarray], vertices: Templates,
               explain: bool = False) -> tuple[np.ndarray, list[str] | None]:
     """Each case's largest ``dt_factor`` (one formula, in the engine); with ``explain``, what sets it."""
-    return _core.max_dt_factor_for(cols, vertices, explain)
+    own, partner = _split(vertices)
+    return _core.max_dt_factor_for(cols, own, explain, partner_vertices=partner)
 
 
 def records_frame(raw: Mapping[str, np.ndarray]) -> pl.DataFrame:

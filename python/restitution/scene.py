@@ -115,10 +115,10 @@ class Scene:
     of the contact's own number of steps (docs/model.md, "Bounded work"); every record says
     which budget it ran under (``step_budget``)."""
     partner: Shape | None = None
-    """What the particle hits: None, the plate (default); or a second, free particle of its own kind
-    (a ``Disc`` for a disc, a ``Sphere`` for a sphere), in which case ``v`` is the relative speed
-    and ``theta_deg`` the angle between the relative velocity and the tangent at first touch
-    (docs/model.md, section 17)."""
+    """What the particle hits: None, the plate (default); or a second, free particle (a ``Disc``,
+    ``RegularPolygon`` or ``ConvexPolygon`` for a disc or a polygon, a ``Sphere`` for a sphere), in
+    which case ``v`` is the relative speed and ``theta_deg`` the angle between the relative velocity
+    and the tangent at first touch, the line of centres' normal (docs/model.md, sections 17, 17.8)."""
     partner_rho: float | None = None
     """The partner's density (kg/m^3); None: the particle's ``rho``."""
     partner_E: float | None = None
@@ -175,12 +175,8 @@ class Scene:
         if shape is None:
             return {"partner_body": float(_engine.code("partner_body", "plate")), "partner_n": nan,
                     "partner_r": nan, "partner_phi0_deg": nan, "partner_omega_in": 0.0}
-        if isinstance(shape, ConvexPolygon):
-            raise _engine.RestitutionError("partner", "ConvexPolygon",
-                                           "a Disc, RegularPolygon or Sphere (a ConvexPolygon partner is not "
-                                           "carried by the engine's columns yet: use a RegularPolygon)")
         return {"partner_body": float(_engine.code("partner_body", "sphere" if isinstance(shape, Sphere) else "prism")),
-                "partner_n": float(shape.n), "partner_r": float(shape.r),
+                "partner_n": float(0 if isinstance(shape, ConvexPolygon) else shape.n), "partner_r": float(shape.r),
                 "partner_phi0_deg": _engine.real("partner_phi0_deg", shape.phi0_deg), "partner_omega_in": 0.0}
 
     def _engine_row(self) -> tuple[float, ...]:
@@ -192,8 +188,12 @@ class Scene:
         return row
 
     def template_vertices(self) -> Any:
-        """Unit-circumradius vertices of a ConvexPolygon scene (the engine scales them by r), else None."""
-        return self.shape._template if isinstance(self.shape, ConvexPolygon) else None
+        """Unit-circumradius vertices of a ConvexPolygon scene (the engine scales them by r), else None;
+        with a ConvexPolygon partner, the pair (the particle's or None, the partner's)."""
+        own = self.shape._template if isinstance(self.shape, ConvexPolygon) else None
+        if isinstance(self.partner, ConvexPolygon):
+            return own, self.partner._template
+        return own
 
     @classmethod
     def paper(cls, shape: Shape | None = None, **changes: Any) -> Scene:

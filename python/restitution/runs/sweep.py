@@ -207,6 +207,8 @@ def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
     what the engine cannot: the axis exists, its values are numbers (or names) in a 1-D list."""
     if name not in AXES:
         raise ValueError(f"`{name}` is not a sweep axis; allowed axes: {', '.join(AXES)}")
+    if name in ("partner_n", "partner_body") and isinstance(scene.partner, ConvexPolygon):
+        raise ValueError(f"`{name}` is not a sweep axis for a ConvexPolygon partner (its vertices are fixed)")
     if name in _engine.CHOICES:
         try:
             names = np.atleast_1d(np.asarray(values, dtype=object))
@@ -222,6 +224,7 @@ def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
         if isinstance(scene.shape, ConvexPolygon):
             raise ValueError("`n` is not a sweep axis for a ConvexPolygon scene (its vertices are fixed)")
         a = ints.astype(np.float64)
+
     else:
         try:
             a = np.atleast_1d(np.asarray(values, dtype=np.float64))

@@ -8,7 +8,7 @@
 //! 120-gon; `vary`: every case its own gamma, so that no two cases share a scene). Also
 //! useful under `perf record`.
 
-use restitution_core::{cases_from_rows, run_cases, Case, CASE_COLUMNS, CHOICES};
+use restitution_core::{cases_from_rows, run_cases, Case, Templates, CASE_COLUMNS, CHOICES};
 use std::time::Instant;
 
 /// The cases of the grid with `integrator` at step `dt` (adaptive: largest step 1 at `tol`).
@@ -55,7 +55,7 @@ fn grid(integrator: usize, n: f64, dt: f64, tol: f64, vary: bool) -> Vec<Case> {
             rows.push(row);
         }
     }
-    cases_from_rows(rows.into_iter(), None).expect("valid cases")
+    cases_from_rows(rows.into_iter(), Templates::default()).expect("valid cases")
 }
 
 /// Least-squares intercept and slope of y against x.

@@ -48,6 +48,6 @@ pub use model::{
     check_case, check_orientation, check_theta, max_dt_factor, max_dt_factor_reason,
     scene_from_columns, shape_from_columns, sin_cos_deg, ContactRates, Hertz, InertiaModel,
     Initial, Integrator, Model, NormalLaw, Pair, Partner, Scene, TangentialHistory,
-    TangentialModel, CASE_COLUMNS, CHOICES,
+    TangentialModel, Templates, CASE_COLUMNS, CHOICES,
 };
 pub use sweep::{cases_from_rows, check_cases, run_cases, run_cases_cancellable, Case};

@@ -5,7 +5,7 @@ use crate::cancel::Cancel;
 use crate::error::Error;
 use crate::impact::{simulate_cancellable, Record};
 use crate::model::columns::{scene_from_columns_with, shape_columns};
-use crate::model::{check_case, Initial, Scene, CASE_COLUMNS};
+use crate::model::{check_case, Initial, Scene, Templates, CASE_COLUMNS};
 use rayon::prelude::*;
 
 /// One impact to run.
@@ -18,13 +18,13 @@ pub struct Case {
 }
 
 /// The cases of a table whose rows are in [`CASE_COLUMNS`] order, each read by
-/// [`crate::scene_from_columns`], with the unit-circumradius `vertices` of a convex polygon if
-/// any; the error of the first bad row with its index. Consecutive rows with the same `n`, `r`
+/// [`crate::scene_from_columns`], with the unit-circumradius vertices of its convex polygons
+/// (`templates`); the error of the first bad row with its index. Consecutive rows with the same `n`, `r`
 /// and `body` share one shape, built once: a regular 120-gon's corners, area and polar angles
 /// took 3.5 us per case, more than its fixed cost of an impact.
 pub fn cases_from_rows(
     rows: impl Iterator<Item = [f64; CASE_COLUMNS.len()]>,
-    vertices: Option<&[[f64; 2]]>,
+    templates: Templates,
 ) -> std::result::Result<Vec<Case>, (usize, Error)> {
     let mut out: Vec<Case> = Vec::new();
     let mut last_key = None;
@@ -35,7 +35,7 @@ pub fn cases_from_rows(
             .last()
             .filter(|_| last_key == Some(key))
             .map(|c| c.scene.shape.clone());
-        let (scene, init) = scene_from_columns_with(&row, vertices, shape).map_err(|e| (i, e))?;
+        let (scene, init) = scene_from_columns_with(&row, templates, shape).map_err(|e| (i, e))?;
         last_key = Some(key);
         out.push(Case { scene, init });
     }
@@ -160,9 +160,9 @@ mod tests {
             row(&[("n", 0.0), ("r", 0.02), ("body", 1.0)]),
             row(&[("n", 5.0)]),
         ];
-        let cases = cases_from_rows(rows.iter().copied(), None).unwrap();
+        let cases = cases_from_rows(rows.iter().copied(), Templates::default()).unwrap();
         for (case, row) in cases.iter().zip(&rows) {
-            let (scene, init) = scene_from_columns(row, None).unwrap();
+            let (scene, init) = scene_from_columns(row, Templates::default()).unwrap();
             assert_eq!(case.scene, scene);
             assert_eq!(case.init, init);
         }
@@ -172,7 +172,7 @@ mod tests {
             row(&[("n", 12.0), ("theta_deg", 100.0)]),
         ];
         assert!(matches!(
-            cases_from_rows(bad.into_iter(), None),
+            cases_from_rows(bad.into_iter(), Templates::default()),
             Err((1, _))
         ));
     }

@@ -57,7 +57,10 @@ impl From<PyCoreError> for PyErr {
 /// `CASE_COLUMNS`), with the unit-circumradius `vertices` of a convex polygon if any.
 fn read_cases(
     columns: &Bound<'_, PyDict>,
-    vertices: Option<PyReadonlyArray2<'_, f64>>,
+    vertices: (
+        Option<PyReadonlyArray2<'_, f64>>,
+        Option<PyReadonlyArray2<'_, f64>>,
+    ),
 ) -> PyResult<Vec<core::Case>> {
     let arrays = core::CASE_COLUMNS
         .iter()
@@ -76,9 +79,9 @@ fn read_cases(
             core::CASE_COLUMNS[0]
         )));
     }
-    let vertices = read_vertices(vertices)?;
+    let (particle, partner) = (read_vertices(vertices.0)?, read_vertices(vertices.1)?);
     let rows = (0..len).map(|i| std::array::from_fn(|k| slices[k][i]));
-    core::cases_from_rows(rows, vertices.as_deref())
+    core::cases_from_rows(rows, templates(&particle, &partner))
         .map_err(|(i, e)| PyCoreError(e, Some(i)).into())
 }
 
@@ -95,6 +98,17 @@ fn column<'py>(cols: &Bound<'py, PyDict>, name: &str) -> PyResult<PyReadonlyArra
         )));
     }
     Ok(array)
+}
+
+/// The engine's view of the particle's and the partner's vertex templates.
+fn templates<'a>(
+    particle: &'a Option<Vec<[f64; 2]>>,
+    partner: &'a Option<Vec<[f64; 2]>>,
+) -> core::Templates<'a> {
+    core::Templates {
+        particle: particle.as_deref(),
+        partner: partner.as_deref(),
+    }
 }
 
 fn read_vertices(vertices: Option<PyReadonlyArray2<'_, f64>>) -> PyResult<Option<Vec<[f64; 2]>>> {
@@ -343,14 +357,15 @@ fn last_call_diagnostics(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 /// Runs one impact per row of `columns` in parallel on `threads` threads (0: all cores) with
 /// the GIL released. Returns the record columns.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, threads))]
+#[pyo3(signature = (columns, vertices, threads, partner_vertices=None))]
 fn run_cases<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
     threads: usize,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let cases = read_cases(columns, vertices)?;
+    let cases = read_cases(columns, (vertices, partner_vertices))?;
     // One case, or one thread: the calling thread runs it (results do not depend on threads).
     let parallel = threads != 1 && cases.len() > 1;
     let threads = if parallel { threads } else { 1 };
@@ -365,10 +380,13 @@ fn run_cases<'py>(
 /// [`read_cases`] reads a row of columns.
 fn read_case(
     row: [f64; core::CASE_COLUMNS.len()],
-    vertices: Option<PyReadonlyArray2<'_, f64>>,
+    vertices: (
+        Option<PyReadonlyArray2<'_, f64>>,
+        Option<PyReadonlyArray2<'_, f64>>,
+    ),
 ) -> PyResult<core::Case> {
-    let vertices = read_vertices(vertices)?;
-    let mut cases = core::cases_from_rows(std::iter::once(row), vertices.as_deref())
+    let (particle, partner) = (read_vertices(vertices.0)?, read_vertices(vertices.1)?);
+    let mut cases = core::cases_from_rows(std::iter::once(row), templates(&particle, &partner))
         .map_err(|(i, e)| PyCoreError(e, Some(i)))?;
     Ok(cases.pop().expect("one row, one case"))
 }
@@ -391,13 +409,14 @@ fn record_tuple<'py>(py: Python<'py>, rec: &core::Record) -> PyResult<Bound<'py,
 /// thread with the GIL released; returns its record as a tuple in `RECORD_COLUMNS` order (None
 /// where a value is undefined): one impact without a column per value either way.
 #[pyfunction]
-#[pyo3(signature = (row, vertices))]
+#[pyo3(signature = (row, vertices, partner_vertices=None))]
 fn run_case<'py>(
     py: Python<'py>,
     row: [f64; core::CASE_COLUMNS.len()],
     vertices: Option<PyReadonlyArray2<'py, f64>>,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<Bound<'py, PyTuple>> {
-    let case = read_case(row, vertices)?;
+    let case = read_case(row, (vertices, partner_vertices))?;
     let rec = interruptible(py, false, |cancel| {
         core::simulate_cancellable(&case.scene, &case.init, cancel)
     })?
@@ -408,14 +427,15 @@ fn run_case<'py>(
 /// Checks every rule of every case of `columns` without running it (in parallel, GIL
 /// released); raises `RestitutionError` naming the first bad case.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, threads=0))]
+#[pyo3(signature = (columns, vertices, threads=0, partner_vertices=None))]
 fn check_cases<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
     threads: usize,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<()> {
-    let cases = read_cases(columns, vertices)?;
+    let cases = read_cases(columns, (vertices, partner_vertices))?;
     py.detach(|| core::check_cases(&cases, threads))
         .map_err(|(i, e)| PyCoreError(e, Some(i)).into())
 }
@@ -442,13 +462,14 @@ const TRACE_COLUMNS: [&str; 15] = [
 /// Runs the one impact of `row` (as [`run_case`]) and returns (its record as a tuple, trace
 /// columns).
 #[pyfunction]
-#[pyo3(signature = (row, vertices))]
+#[pyo3(signature = (row, vertices, partner_vertices=None))]
 fn trace_case<'py>(
     py: Python<'py>,
     row: [f64; core::CASE_COLUMNS.len()],
     vertices: Option<PyReadonlyArray2<'py, f64>>,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<(Bound<'py, PyTuple>, Bound<'py, PyDict>)> {
-    let case = read_case(row, vertices)?;
+    let case = read_case(row, (vertices, partner_vertices))?;
     let (rec, tr) = interruptible(py, false, |cancel| {
         core::simulate_with_trace_cancellable(&case.scene, &case.init, cancel)
     })?
@@ -481,14 +502,15 @@ fn trace_case<'py>(
 /// that case's stiffness and damping (the column `dt_factor` itself is ignored). With
 /// `explain`, also what sets each bound, in words.
 #[pyfunction]
-#[pyo3(signature = (columns, vertices, explain=false))]
+#[pyo3(signature = (columns, vertices, explain=false, partner_vertices=None))]
 fn max_dt_factor_for<'py>(
     py: Python<'py>,
     columns: &Bound<'py, PyDict>,
     vertices: Option<PyReadonlyArray2<'py, f64>>,
     explain: bool,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
 ) -> PyResult<(Bound<'py, PyArray1<f64>>, Option<Vec<String>>)> {
-    let cases = read_cases(columns, vertices)?;
+    let cases = read_cases(columns, (vertices, partner_vertices))?;
     let mut bounds = Vec::with_capacity(cases.len());
     let mut reasons = Vec::new();
     for (i, case) in cases.iter().enumerate() {

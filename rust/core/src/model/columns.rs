@@ -173,14 +173,24 @@ pub fn shape_from_columns(n: f64, r: f64, vertices: Option<&[[f64; 2]]>) -> Resu
     }
 }
 
+/// The unit-circumradius vertices of a case's convex polygons, scaled by their `r` columns:
+/// the particle's (in place of `n`) and the partner's (in place of `partner_n`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Templates<'a> {
+    /// The particle's vertices, if it is a convex polygon.
+    pub particle: Option<&'a [[f64; 2]]>,
+    /// The partner's vertices, if it is a convex polygon.
+    pub partner: Option<&'a [[f64; 2]]>,
+}
+
 /// One case (scene and initial state) from a row of [`CASE_COLUMNS`]. Checks the columns'
 /// own rules (codes, shape, angle, speed); the scene's rules are [`super::derived::Model::new`]'s, applied
 /// when the case runs or by [`super::derived::check_case`].
 pub fn scene_from_columns(
     row: &[f64; CASE_COLUMNS.len()],
-    vertices: Option<&[[f64; 2]]>,
+    templates: Templates,
 ) -> Result<(Scene, Initial)> {
-    scene_from_columns_with(row, vertices, None)
+    scene_from_columns_with(row, templates, None)
 }
 
 /// Where in a row the columns that make a case's shape are: `n`, `r` and `body` (with the
@@ -198,13 +208,15 @@ pub(crate) fn shape_columns() -> [usize; 3] {
 /// (and vertices) when `shape` is given.
 pub(crate) fn scene_from_columns_with(
     row: &[f64; CASE_COLUMNS.len()],
-    vertices: Option<&[[f64; 2]]>,
+    templates: Templates,
     shape: Option<Shape>,
 ) -> Result<(Scene, Initial)> {
+    let vertices = templates.particle;
     let (own, partner) = row.split_at(CASE_COLUMNS.len() - PARTNER_COLUMNS);
     let [theta, omega, v, mu, gamma, gamma_t, e, rho, r, phi0, dtf, kn, cn, kt, n, integ, law, inertia, overlap, nu, plate_e, plate_nu, cor, tangential, tangential_history, body, max_steps, tol, error_estimate] =
         own.try_into().expect("the scene's own columns");
-    let (partner, partner_init) = partner_from_columns(partner.try_into().expect("8 columns"))?;
+    let (partner, partner_init) =
+        partner_from_columns(partner.try_into().expect("8 columns"), templates.partner)?;
     check_theta(theta)?;
     positive("v", v)?;
     finite("omega_in", omega)?;
@@ -272,10 +284,19 @@ pub(crate) fn scene_from_columns_with(
 
 /// The partner from its columns, and its spin and orientation (degrees): `None` for the plate,
 /// whose columns must then be unset (a spin or shape given without a partner is a mistake).
-fn partner_from_columns(cols: [f64; PARTNER_COLUMNS]) -> Result<(Option<Partner>, (f64, f64))> {
+fn partner_from_columns(
+    cols: [f64; PARTNER_COLUMNS],
+    vertices: Option<&[[f64; 2]]>,
+) -> Result<(Option<Partner>, (f64, f64))> {
     let [body, n, r, phi0, rho, e, nu, omega] = cols;
     finite("partner_omega_in", omega)?;
     let body = choice("partner_body", body)?;
+    ensure_param!(
+        vertices.is_none() || body == 1,
+        "partner",
+        "ConvexPolygon",
+        "a partner body \"prism\" for the partner's vertices"
+    );
     if body == 0 {
         for (name, x) in [("partner_n", n), ("partner_r", r), ("partner_rho", rho)]
             .into_iter()
@@ -311,7 +332,7 @@ fn partner_from_columns(cols: [f64; PARTNER_COLUMNS]) -> Result<(Option<Partner>
         );
         Shape::sphere(r).map_err(|e| e.renamed("partner_r"))?
     } else {
-        shape_from_columns(optional(n).unwrap_or(0.0), r, None).map_err(|e| match e {
+        shape_from_columns(optional(n).unwrap_or(0.0), r, vertices).map_err(|e| match e {
             Error::InvalidParameter { ref name, .. } if name == "n" => e.renamed("partner_n"),
             e => e.renamed("partner_r"),
         })?

@@ -9,7 +9,8 @@ pub mod scene;
 pub mod stability;
 
 pub use columns::{
-    check_orientation, check_theta, scene_from_columns, shape_from_columns, CASE_COLUMNS, CHOICES,
+    check_orientation, check_theta, scene_from_columns, shape_from_columns, Templates,
+    CASE_COLUMNS, CHOICES,
 };
 pub use derived::{check_case, Hertz, Model};
 pub use pair::Pair;
