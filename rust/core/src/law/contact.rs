@@ -194,11 +194,20 @@ impl NormalForce {
     /// omega2), before the clip (docs/model.md, section 17): the area law on the area, damped
     /// by dA/dt = -l (g_n + lever_rate_area . omega), acting along n at its levers; the linear
     /// law on the springs, each with its own dashpot; the Hertz law at the depth.
+    /// `levers` false for round pairs, whose normal forces act on the line of centres: their
+    /// levers are zero, and leaving the zeros' products out keeps them off the step's chain
+    /// of dependent operations (1.36x the plate's step with them, against 1.08x).
     #[inline(always)]
-    pub fn on_pair(&self, f: &PairFrame, v: &[f64; 4]) -> PairNormal {
+    pub fn on_pair(&self, f: &PairFrame, v: &[f64; 4], levers: bool) -> PairNormal {
         let n = f.n;
         let g_n = n[0] * v[0] + n[1] * v[1];
-        let at = |l: [f64; 2]| l[0] * v[2] + l[1] * v[3];
+        let at = |l: [f64; 2]| {
+            if levers {
+                l[0] * v[2] + l[1] * v[3]
+            } else {
+                0.0
+            }
+        };
         let (f_el, f_d) = match self.law {
             NormalLaw::Area => (
                 f.area * self.e_over_l,
@@ -221,7 +230,11 @@ impl NormalForce {
                 (h.k * f.depth * s, h.c * s.sqrt() * -g_n)
             }
         };
-        let (la, ld) = (f.lever_area, f.lever_rate_area);
+        let (la, ld) = if levers {
+            (f.lever_area, f.lever_rate_area)
+        } else {
+            ([0.0; 2], [0.0; 2])
+        };
         PairNormal {
             f_el,
             f_d,

@@ -88,7 +88,7 @@ impl<'a, G: PairGeometry> PairContact<'a, G> {
         };
         let n = fr.n;
         let t = [n[1], -n[0]];
-        let mut normal = self.normal.on_pair(&fr, v);
+        let mut normal = self.normal.on_pair(&fr, v, G::CORNERS);
         if normal.f_el + normal.f_d < 0.0 {
             normal = PairNormal::default();
         }
@@ -101,7 +101,11 @@ impl<'a, G: PairGeometry> PairContact<'a, G> {
             f_t * fr.lever_t[0],
             f_t * fr.lever_t[1],
         ];
-        let force = std::array::from_fn(|i| normal.el[i] + normal.damp[i] + tan[i]);
+        let mut force: Lanes = std::array::from_fn(|i| normal.el[i] + normal.damp[i] + tan[i]);
+        if !G::CORNERS {
+            // Round bodies: the normal force has no torque (see `NormalForce::on_pair`).
+            (force[2], force[3]) = (tan[2], tan[3]);
+        }
         let forces = PairForces {
             f_el: normal.f_el,
             f_d: normal.f_d,

@@ -95,7 +95,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let mut e = Eval::default();
         match self.geometry.frame(&q) {
             Some(fr) => {
-                let normal = self.normal.on_pair(&fr, &v);
+                let normal = self.normal.on_pair(&fr, &v, G::CORNERS);
                 e.f_raw = normal.f_el + normal.f_d;
                 if !m.clipped {
                     (e.f_el, e.f_d) = (normal.f_el, normal.f_d);
