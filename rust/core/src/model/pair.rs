@@ -124,8 +124,9 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
         "\"auto\" for a pair (a pair's overlap is its pairing's own: the lens of two discs, \
          the disc-polygon clip or parry's intersection of two polygons)"
     );
-    // Vertex springs on a pair turn with its contact: the adaptive path's slip -> stick switch
-    // then misses reversals (measured: energy created at mu >= 100, docs/model.md 17.7), and
+    // Vertex springs on a pair turn with its contact, and the adaptive path's stick/slip
+    // switches chatter among them: the reference's impact and its exchange (the same impact
+    // seen from the other body) came apart by 0.13 in e_n at mu 0.6 (docs/model.md 17.8).
     // Verlet cannot step over the dashpots' jumps (as on the plate).
     let corners = |s: &Shape| matches!(s, Shape::Polygon(_));
     let linear = matches!(scene.normal_law, NormalLaw::Linear { .. });
@@ -136,8 +137,8 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
         "integrator",
         scene.integrator.name(),
         "\"gear5\" for normal_law \"linear\" on a pair with corners (its vertex springs turn \
-         with the contact: the adaptive path cannot locate the end of a slip there, and Verlet \
-         cannot step over the dashpots' jumps; or use normal_law \"area\")"
+         with the contact: the adaptive path's stick/slip switches chatter among them, and \
+         Verlet cannot step over the dashpots' jumps; or use normal_law \"area\")"
     );
     if let NormalLaw::Hertz { plate, .. } = scene.normal_law {
         ensure_param!(

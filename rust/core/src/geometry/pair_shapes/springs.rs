@@ -48,9 +48,9 @@ pub(super) fn corner_springs(
             let (d, mu) = least_penetration(x, a);
             (d, [-mu[0], -mu[1]])
         };
-        if depth > 0.0 {
-            springs.add(depth, lane_direction(x, u, q));
-        }
+        // A corner just inside may sit at a round-off depth of either sign: its spring is
+        // there (its dashpot acts from the touch on), at zero depth.
+        springs.add(depth.max(0.0), lane_direction(x, u, q));
     }
     springs
 }
@@ -89,8 +89,10 @@ pub(super) fn disc_spring(
             foot,
         )
     };
-    if depth > 0.0 {
-        springs.add(depth, lane_direction(x, [sign * u[0], sign * u[1]], q));
-    }
+    // The overlap exists (the caller's clip found it): a round-off depth is a zero one.
+    springs.add(
+        depth.max(0.0),
+        lane_direction(x, [sign * u[0], sign * u[1]], q),
+    );
     springs
 }

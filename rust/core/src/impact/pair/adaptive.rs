@@ -153,12 +153,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             apart: false,
             tan: Tan::None,
         };
-        // The mode just after touch, where the linear law's dashpot already pushes (at touch
-        // itself no overlap acts yet): probed a trillionth of the contact in.
-        let mut probe = s;
-        probe[Y] += 1e-12 * t_est * init.vy;
-        probe[X] += 1e-12 * t_est * init.vx;
-        mode.tan = ode.initial_tan(&mode, &probe);
+        mode.tan = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
         let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
         let weight =
             error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
@@ -325,13 +320,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                     tan: Tan::None,
                 };
                 s[XI] = 0.0;
-                // The mode just after touch, probed a hair inside (at touch itself the
-                // contact's frame is not yet defined), as at the first touch.
-                let mut probe = *s;
-                for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
-                    probe[i] += self.probe_dt * s[rate];
-                }
-                self.mode.tan = ode.initial_tan(&self.mode, &probe);
+                self.mode.tan = ode.mode_after_touch(&self.mode, s, self.probe_dt);
                 self.t_touch = self.t;
                 self.rec.contacts += 1;
             }

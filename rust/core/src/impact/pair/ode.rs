@@ -246,6 +246,28 @@ impl<G: PairGeometry> PairOde<'_, G> {
         -(e.f_t + ct * e.v_t) / k_xi
     }
 
+    /// The tangential mode just after a touch at state `s`, where the linear law's dashpot
+    /// already pushes: at touch itself no overlap acts yet, so it is probed `dt` of the free
+    /// motion in, and ten thousand times further while the bodies' overlap is still below what
+    /// their frame resolves (a corner's overlap grows like the square of the time).
+    pub(super) fn mode_after_touch(&self, m: &Mode, s: &State, dt: f64) -> Tan {
+        let mut probe = *s;
+        for k in 0..3 {
+            let h = dt * 1e4f64.powi(k);
+            for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
+                probe[i] = s[i] + h * s[rate];
+            }
+            if self
+                .geometry
+                .frame(&[probe[X], probe[Y], probe[4], probe[6]])
+                .is_some()
+            {
+                break;
+            }
+        }
+        self.initial_tan(m, &probe)
+    }
+
     /// The tangential mode when the normal force acts: stick if the spring's trial force is
     /// inside the cone, else slip in its direction.
     pub(super) fn initial_tan(&self, m: &Mode, s: &State) -> Tan {
