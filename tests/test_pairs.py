@@ -162,7 +162,7 @@ def test_negative_e_n_map_obeys_the_exact_criterion_and_reports_the_estimate(tmp
 
 
 def test_polygon_pairs_run_and_swap() -> None:
-    """A hexagon on a pentagon and a disc on a square (docs/model.md 17.7): finite records that
+    """A hexagon on a pentagon and a disc on a square (docs/model.md 17.8): finite records that
     end separated, momentum kept, and the picture turned by 180 degrees with the bodies
     swapped is the same impact with the spins exchanged."""
     cases = [(rs.RegularPolygon(0.01, 6, 10.0), rs.RegularPolygon(0.012, 5, 40.0)),

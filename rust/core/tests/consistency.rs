@@ -313,22 +313,9 @@ fn check_impact(
     );
     let worst = t.worst_gain.entry(key).or_insert(f64::NEG_INFINITY);
     *worst = worst.max(gain);
-    // The area law between bodies with corners is not a potential's force (docs/model.md,
-    // 17.7): the model itself may gain or lose energy, and what an integrator adds is its gain
-    // beyond the reference's (the model's, to 1e-9).
-    let model_gain = if !(corners_in_pair(scene) && scene.normal_law == NormalLaw::Area) {
-        0.0
-    } else if scene.integrator == Integrator::Reference {
-        gain
-    } else {
-        let reference = Scene {
-            integrator: Integrator::Reference,
-            ..scene.clone()
-        };
-        match simulate(&reference, &init) {
-            Ok(r) => r.energy_out / r.energy_in - 1.0,
-            Err(e) => return t.fail(format!("{what}: reference refused: {e}")),
-        }
+    let model_gain = match model_gain(scene, &init, gain) {
+        Ok(g) => g,
+        Err(e) => return t.fail(format!("{what}: reference refused: {e}")),
     };
     // (A damped or frictional model loses energy: nothing of its loss is credited.)
     if gain - model_gain.max(0.0) > documented_gain_bound(scene) {
@@ -357,6 +344,24 @@ fn check_impact(
     if symmetries {
         check_symmetries(&what, label, scene, &init, &rec, t);
     }
+}
+
+/// The energy gain the model itself makes on `scene`'s impact `init` (the one measured: `gain`):
+/// 0 where the law is a potential's; the area law between bodies with corners is not
+/// (docs/model.md, 17.8), and there the model's gain is the reference's, to 1e-9.
+fn model_gain(scene: &Scene, init: &Initial, gain: f64) -> Result<f64, Error> {
+    if !(corners_in_pair(scene) && scene.normal_law == NormalLaw::Area) {
+        return Ok(0.0);
+    }
+    if scene.integrator == Integrator::Reference {
+        return Ok(gain);
+    }
+    let reference = Scene {
+        integrator: Integrator::Reference,
+        ..scene.clone()
+    };
+    let r = simulate(&reference, init)?;
+    Ok(r.energy_out / r.energy_in - 1.0)
 }
 
 /// Mirror image, rotation by 360 / n and dimensional analysis give the same record.

@@ -1,4 +1,4 @@
-//! Pairs with corners (docs/model.md, section 17.7): polygons with polygons and discs with
+//! Pairs with corners (docs/model.md, section 17.8): polygons with polygons and discs with
 //! polygons, under the area law (parry's intersection, the chord's normal) and the linear law
 //! (vertex springs).
 //!
@@ -34,7 +34,7 @@ fn with_partner(scene: Scene, partner: Shape) -> Scene {
 /// A polygon at phi head-on on the plate at v, and the pair of it with its mirror image
 /// (phi2 = -phi) head-on at 2 v: the same e_n, spin, contact time and half the depth. The
 /// linear law only face to face: corner against corner, its vertex springs measure each
-/// corner's depth to the other body's edges, not to the mirror line (section 17.7).
+/// corner's depth to the other body's edges, not to the mirror line (section 17.8).
 #[test]
 fn mirror_polygons_head_on_are_one_polygon_on_the_plate() {
     let laws = [
@@ -261,7 +261,7 @@ fn polygon_pairs_converge_with_dt_and_the_integrators_agree() {
 }
 
 /// The linear law on a pair with corners runs on Gear-5 only, and the others are refused
-/// naming the integrator (vertex springs turn with the contact: docs/model.md, 17.7).
+/// naming the integrator (vertex springs turn with the contact: docs/model.md, 17.8).
 #[test]
 fn linear_pairs_with_corners_take_gear5() {
     for integrator in [

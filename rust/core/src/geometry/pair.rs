@@ -11,7 +11,7 @@
 use super::disc::disc_segment_at;
 
 /// Where a pair's forces act at one configuration, as the laws read it (docs/model.md,
-/// sections 17.2 and 17.7). A lever L = (L_1, L_2) of a force along a direction u acting at
+/// sections 17.2 and 17.8). A lever L = (L_1, L_2) of a force along a direction u acting at
 /// point x is ((x - q) x u, -(x x u)): the torques on the particle and the partner per unit
 /// of the force, and the rates of the point's relative velocity along u per unit of each spin.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -34,7 +34,7 @@ pub struct PairFrame {
     pub springs: Springs,
 }
 
-/// The linear law's springs on a pair (docs/model.md, section 17.7): spring i presses the
+/// The linear law's springs on a pair (docs/model.md, section 17.8): spring i presses the
 /// particle along its unit direction u_i at the point x_i with its depth d_i, and the partner
 /// back; w_i = (u_i, (x_i - q) x u_i, -(x_i x u_i)) is its direction on the lanes, so that its
 /// force on them is F_i w_i and the rate of its depth -w_i . v.

@@ -1,4 +1,4 @@
-//! Where a pair with corners meets (docs/model.md, section 17.7): a polygon with a polygon
+//! Where a pair with corners meets (docs/model.md, section 17.8): a polygon with a polygon
 //! (parry's convex-convex intersection, as for a general obstacle) and a disc with a polygon
 //! (closed form: the polygon clipped by the circle, plus the circular segments its arcs cut).
 //!
@@ -6,7 +6,7 @@
 //! q = (x, y); each body turned by its own angle. As on the plate (section 3), the contact's
 //! chord joins the two points where the boundaries cross, the normal n is perpendicular to it
 //! (towards the particle), and the forces act at the overlap's centroid. Two facts make the
-//! area law's damping exact and keep angular momentum (section 17.7): moving the particle by
+//! area law's damping exact and keep angular momentum (section 17.8): moving the particle by
 //! dq changes the area by -l n.dq, and turning body i by dphi_i changes it by b_i dphi_i, with
 //! b_1 = (|p_a - q|^2 - |p_b - q|^2) / 2 and b_2 = (|p_b|^2 - |p_a|^2) / 2 from the chord's ends
 //! p_a, p_b (ordered along t = (n_y, -n_x)); b_1 + b_2 = l (q x n), so a rigid turn of the
@@ -207,7 +207,7 @@ impl<'a> ShapePair<'a> {
 
     /// The height of the particle's centre, straight above the partner's, at which the two
     /// touch with orientations `phi1`, `phi2` (rad): the largest height at which a corner or a
-    /// disc rests on the other body's top (the first touch of section 17.7).
+    /// disc rests on the other body's top (the first touch of section 17.8).
     pub fn touch_height(&self, phi1: f64, phi2: f64) -> f64 {
         let origin = [0.0, 0.0];
         match (self.particle, self.partner) {

@@ -83,7 +83,7 @@ pub fn documented_angular_momentum_bound(scene: &Scene) -> f64 {
     }
 }
 
-/// Whether `scene` is a pair in which a body has corners (docs/model.md, section 17.7).
+/// Whether `scene` is a pair in which a body has corners (docs/model.md, section 17.8).
 pub fn corners_in_pair(scene: &Scene) -> bool {
     let corners = |s: &Shape| matches!(s, Shape::Polygon(_));
     scene

@@ -1,4 +1,4 @@
-//! The free flight of a pair with corners between contacts (docs/model.md, section 17.7):
+//! The free flight of a pair with corners between contacts (docs/model.md, section 17.8):
 //! apart, the bodies move and turn uniformly, so the flight is skipped in one jump as far as
 //! they certainly cannot touch (conservative advancement: no two points of the bodies close
 //! faster than |g| + |omega1| R1 + |omega2| R2), and the impact ends once their circumscribed
