@@ -95,6 +95,12 @@ fn placed(p: &Polygon, at: [f64; 2], phi: f64) -> impl Iterator<Item = [f64; 2]>
         .map(move |v| [at[0] + c * v.x - s * v.y, at[1] + s * v.x + c * v.y])
 }
 
+/// Fills `out` with the vertices of `p` turned by `phi` and placed at `at`.
+fn place_into(out: &mut Vec<[f64; 2]>, p: &Polygon, at: [f64; 2], phi: f64) {
+    out.clear();
+    out.extend(placed(p, at, phi));
+}
+
 /// The placed vertices of a pair's two polygons.
 type PlacedPair = (Vec<[f64; 2]>, Vec<[f64; 2]>);
 
@@ -134,10 +140,8 @@ impl<'a> ShapePair<'a> {
         match (self.particle, self.partner) {
             (PairBody::Polygon(a), PairBody::Polygon(b)) => PLACED.with(|cell| {
                 let (pa, pb) = &mut *cell.borrow_mut();
-                pa.clear();
-                pa.extend(placed(a, at, q[2]));
-                pb.clear();
-                pb.extend(placed(b, [0.0, 0.0], q[3]));
+                place_into(pa, a, at, q[2]);
+                place_into(pb, b, [0.0, 0.0], q[3]);
                 polygon_pair_overlap(
                     pa.iter().copied(),
                     pb.iter().copied(),
@@ -152,30 +156,10 @@ impl<'a> ShapePair<'a> {
                 )?
             }),
             (PairBody::Disc(r), PairBody::Polygon(b)) => {
-                let mut p = disc_polygon(at, r, placed(b, [0.0, 0.0], q[3]), at)?;
-                if springs {
-                    p.springs = disc_spring(
-                        at,
-                        r,
-                        &placed(b, [0.0, 0.0], q[3]).collect::<Vec<_>>(),
-                        at,
-                        1.0,
-                    );
-                }
-                Some(p)
+                self.disc_with_polygon(at, r, (b, [0.0, 0.0], q[3]), at, 1.0)
             }
             (PairBody::Polygon(a), PairBody::Disc(r)) => {
-                let mut p = disc_polygon([0.0, 0.0], r, placed(a, at, q[2]), at)?;
-                if springs {
-                    p.springs = disc_spring(
-                        [0.0, 0.0],
-                        r,
-                        &placed(a, at, q[2]).collect::<Vec<_>>(),
-                        at,
-                        -1.0,
-                    );
-                }
-                Some(p)
+                self.disc_with_polygon([0.0, 0.0], r, (a, at, q[2]), at, -1.0)
             }
             (PairBody::Disc(_), PairBody::Disc(_)) => None,
         }
@@ -184,25 +168,50 @@ impl<'a> ShapePair<'a> {
     /// The distance between the bodies at lanes `q` (m; 0 when they touch or overlap).
     pub fn gap(&self, q: &[f64; 4]) -> f64 {
         let at = [q[0], q[1]];
-        match (self.particle, self.partner) {
-            (PairBody::Polygon(a), PairBody::Polygon(b)) => {
-                let pa: Vec<[f64; 2]> = placed(a, at, q[2]).collect();
-                let pb: Vec<[f64; 2]> = placed(b, [0.0, 0.0], q[3]).collect();
-                if inside_any(&pa, &pb) || inside_any(&pb, &pa) {
-                    return 0.0;
+        PLACED.with(|cell| {
+            let (pa, pb) = &mut *cell.borrow_mut();
+            match (self.particle, self.partner) {
+                (PairBody::Polygon(a), PairBody::Polygon(b)) => {
+                    place_into(pa, a, at, q[2]);
+                    place_into(pb, b, [0.0, 0.0], q[3]);
+                    if inside_any(pa, pb) || inside_any(pb, pa) {
+                        return 0.0;
+                    }
+                    point_polygon_distance(pa, pb).min(point_polygon_distance(pb, pa))
                 }
-                point_polygon_distance(&pa, &pb).min(point_polygon_distance(&pb, &pa))
+                (PairBody::Disc(r), PairBody::Polygon(b)) => {
+                    place_into(pb, b, [0.0, 0.0], q[3]);
+                    (distance_to_polygon(at, pb) - r).max(0.0)
+                }
+                (PairBody::Polygon(a), PairBody::Disc(r)) => {
+                    place_into(pa, a, at, q[2]);
+                    (distance_to_polygon([0.0, 0.0], pa) - r).max(0.0)
+                }
+                (PairBody::Disc(r1), PairBody::Disc(r2)) => (at[0].hypot(at[1]) - r1 - r2).max(0.0),
             }
-            (PairBody::Disc(r), PairBody::Polygon(b)) => {
-                let pb: Vec<[f64; 2]> = placed(b, [0.0, 0.0], q[3]).collect();
-                (distance_to_polygon(at, &pb) - r).max(0.0)
+        })
+    }
+
+    /// The overlap of the disc of radius `r` centred at `c` with the polygon placed at `at`
+    /// and turned by `phi`, the particle's centre at `q`: the polygon's vertices placed once
+    /// for the clip and the linear law's spring (`sign` as for [`disc_spring`]).
+    fn disc_with_polygon(
+        &self,
+        c: [f64; 2],
+        r: f64,
+        (poly, at, phi): (&Polygon, [f64; 2], f64),
+        q: [f64; 2],
+        sign: f64,
+    ) -> Option<ShapePatch> {
+        PLACED.with(|cell| {
+            let (verts, _) = &mut *cell.borrow_mut();
+            place_into(verts, poly, at, phi);
+            let mut p = disc_polygon(c, r, verts.iter().copied(), q)?;
+            if self.springs {
+                p.springs = disc_spring(c, r, verts, q, sign);
             }
-            (PairBody::Polygon(a), PairBody::Disc(r)) => {
-                let pa: Vec<[f64; 2]> = placed(a, at, q[2]).collect();
-                (distance_to_polygon([0.0, 0.0], &pa) - r).max(0.0)
-            }
-            (PairBody::Disc(r1), PairBody::Disc(r2)) => (at[0].hypot(at[1]) - r1 - r2).max(0.0),
-        }
+            Some(p)
+        })
     }
 
     /// The height of the particle's centre, straight above the partner's, at which the two
