@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::law::pair::{Lanes, PairForces};
 use crate::law::{Dof, Forces};
 use crate::model::{Initial, Model, NormalLaw};
+use crate::numerics::roots;
 
 /// A contact that has not ended after this many estimated contact times is stopped
 /// ([`StopReason::ContactTimeBudget`]).
@@ -359,43 +360,12 @@ pub fn estimate_max_depth(model: &Model, init: &Initial) -> Result<f64> {
             ),
         ));
     }
-    Ok(depth_of_energy(
-        model,
-        init.phi0,
+    // Every law is a power of the depth near touch (the disc's area law 3/2, Hertz 5/2, a
+    // spring 2): Newton on the logarithms solves it in a few evaluations.
+    Ok(roots::log_newton(
+        |d| normal_potential(model, d, init.phi0),
         ke_n,
         half_r,
         (at_half, force_at_half),
     ))
-}
-
-/// The depth at which the potential reaches `energy`, from `hi` (where it is at least that,
-/// with the potential and its rate `at_hi`). Newton's method on log potential against log
-/// depth: every law is a power of the depth near touch (the disc's area law 3/2, Hertz 5/2,
-/// a spring 2), where this is exact in one step, so the depths of tiny and huge speeds alike
-/// take a handful of evaluations (bisection to the last bit took about 60, half of Gear-5's
-/// fixed cost per impact). A step that leaves the bracket of the root bisects instead.
-fn depth_of_energy(model: &Model, phi: f64, energy: f64, hi: f64, at_hi: (f64, f64)) -> f64 {
-    let (mut lo, mut hi) = (0.0, hi);
-    let (mut depth, (mut p, mut dp)) = (hi, at_hi);
-    for _ in 0..200 {
-        if p > energy {
-            hi = depth;
-        } else {
-            lo = depth;
-        }
-        // d ln P / d ln depth = depth P' / P; one Newton step in ln depth.
-        let slope = depth * dp / p;
-        let next = depth * ((energy / p).ln() / slope).exp();
-        let next = if next > lo && next < hi && next.is_finite() {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - depth).abs() <= 1e-14 * depth || next == lo || next == hi {
-            return next;
-        }
-        depth = next;
-        (p, dp) = normal_potential(model, depth, phi);
-    }
-    depth
 }

@@ -5,6 +5,7 @@ use super::Start;
 use crate::error::{Error, Result};
 use crate::geometry::pair::{PairFrame, PairGeometry};
 use crate::model::{Initial, NormalLaw, Pair};
+use crate::numerics::roots;
 
 /// The pair's largest overlap from the energy balance of its undamped normal law along a
 /// head-on approach from the first touch `start` (orientations held), refused where a body's
@@ -25,8 +26,8 @@ pub(super) fn estimate_max_overlap<G: PairGeometry>(
         geometry.frame(&[q[0], q[1] - s, q[2], q[3]])
     };
     let potential = |delta: f64| overlap_potential(pair, &frame, delta);
-    let (u_hi, _) = potential(hi);
-    if u_hi < ke {
+    let at_hi = potential(hi);
+    if at_hi.0 < ke {
         let stiff = match law.scene.normal_law {
             NormalLaw::Linear { kn, .. } => format!("kn = {:e} Pa", 2.0 * kn),
             _ => format!("E = {:e} Pa", pair.particle.scene.e_modulus),
@@ -41,7 +42,7 @@ pub(super) fn estimate_max_overlap<G: PairGeometry>(
             ),
         ));
     }
-    Ok(solve_depth(potential, ke, hi))
+    Ok(roots::log_newton(potential, ke, hi, at_hi))
 }
 
 /// The overlap delta at which a body's cap reaches half its radius first (bisection on the
@@ -114,29 +115,3 @@ const GAUSS_8: [(f64, f64); 8] = [
     (0.796_666_477_413_626_7, 0.222_381_034_453_374_47),
     (0.960_289_856_497_536_3, 0.101_228_536_290_376_26),
 ];
-
-/// The overlap at which `potential` reaches `energy`, below `hi` (where it is above): Newton
-/// on log potential against log depth, bisecting where a step leaves the bracket.
-fn solve_depth(potential: impl Fn(f64) -> (f64, f64), energy: f64, hi: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, hi);
-    let mut depth = hi;
-    for _ in 0..200 {
-        let (p, dp) = potential(depth);
-        if p > energy {
-            hi = depth;
-        } else {
-            lo = depth;
-        }
-        let next = depth * ((energy / p).ln() / (depth * dp / p)).exp();
-        let next = if next > lo && next < hi && next.is_finite() {
-            next
-        } else {
-            0.5 * (lo + hi)
-        };
-        if (next - depth).abs() <= 1e-14 * depth || next == lo || next == hi {
-            return next;
-        }
-        depth = next;
-    }
-    depth
-}
