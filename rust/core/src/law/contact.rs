@@ -251,14 +251,33 @@ impl NormalForce {
     pub fn rate_on_disc(&self, o: &Overlap, r: f64, v: &Dof, a: &Dof) -> Option<f64> {
         match self.law {
             NormalLaw::Area => {
-                let c = o.chord;
-                let dc_dt = -4.0 * (r - o.depth) * v[1] / c;
-                let d2a_dt2 = -(dc_dt * v[1] + c * a[1]);
-                Some(self.e_over_l * -c * v[1] + self.area_damping * d2a_dt2)
+                let dc_dt = -4.0 * (r - o.depth) * v[1] / o.chord;
+                self.rate_on_area(o, (dc_dt, 0.0), v, a)
             }
             NormalLaw::Linear { kn, cn } => Some(-kn * v[1] - cn * a[1]),
             NormalLaw::Hertz { .. } => None,
         }
+    }
+
+    /// The rate of change of the area law's F_el + F_d (before the clip) on a half-plane
+    /// overlap `o` whose chord and chord midpoint move at `(chord_rate, mid_rate)`, for the body
+    /// velocity `v` and acceleration `a`: with dA/dt = -c (v_y + omega x_mid),
+    /// d2A/dt2 = -(dc/dt (v_y + omega x_mid) + c (a_y + alpha x_mid + omega dx_mid/dt)).
+    /// `None` under the other laws.
+    pub fn rate_on_area(
+        &self,
+        o: &Overlap,
+        (chord_rate, mid_rate): (f64, f64),
+        v: &Dof,
+        a: &Dof,
+    ) -> Option<f64> {
+        if self.law != NormalLaw::Area {
+            return None;
+        }
+        let sink = v[1] + v[2] * o.x_mid;
+        let da_dt = -o.chord * sink;
+        let d2a_dt2 = -(chord_rate * sink + o.chord * (a[1] + a[2] * o.x_mid + v[2] * mid_rate));
+        Some(self.e_over_l * da_dt + self.area_damping * d2a_dt2)
     }
 }
 

@@ -4,12 +4,14 @@
 use super::law::{Eval, Reference};
 use super::piece::{Mode, Tally, Touch};
 use super::step::Step;
-use super::{PHI, VY, Y};
+use super::{State, OM, PHI, VY, Y};
+use crate::geometry::Overlap;
 use crate::numerics::roots;
 
 /// Updates the largest depth and area with their maxima inside the taken part of a step. A
-/// polygon's: where a parabola through three samples peaks inside the step, Brent's search on
-/// the dense output finds the peak; a disc's: see [`deepest_disc`].
+/// polygon's: where its depth or its area stops growing inside the step (their rates at the
+/// ends, below), a parabola through three samples and Brent's search on the dense output
+/// find the peak; a disc's: see [`deepest_disc`].
 ///
 /// `start` is the evaluation at the step's start; at its end, a whole step reuses the last
 /// stage's.
@@ -26,21 +28,53 @@ pub(super) fn track_extremes(
         Touch::Disc => return deepest_disc(ode, step, frac, tally),
         Touch::Poly { .. } => {}
     }
-    let of = |e: &Eval| [e.depth, e.forces.overlap.map_or(0.0, |o| o.area)];
-    let sample = |th: f64| of(&ode.eval(m, &step.at(th)).1);
-    let end = if frac == 1.0 {
-        of(&step.end)
+    let of = |o: Option<Overlap>| o.map_or([0.0; 2], |o| [o.depth, o.area]);
+    let (end_state, end) = if frac == 1.0 {
+        (step.y1, step.end.forces.overlap)
     } else {
-        sample(frac)
+        let s = step.at(frac);
+        (s, ode.overlap(m.touch, s[Y], s[PHI]))
     };
-    let ends = [of(start), sample(0.5 * frac), end];
+    let (g0, g1) = (
+        rates(&step.y0, start.forces.overlap).map(|r| r > 0.0),
+        rates(&end_state, end).map(|r| r > 0.0),
+    );
+    // Only the overlap where the peak is sought: the law's forces are not needed.
+    let sample = |th: f64| {
+        let s = step.at(th);
+        of(ode.overlap(m.touch, s[Y], s[PHI]))
+    };
+    // Near its peak the value moves like the square of the distance to it: a position to
+    // sqrt(tol) of the step leaves ~tol of the value's change over the step.
+    let precision = ode.tol.sqrt().clamp(1e-8, 1e-4) * frac.max(1e-300);
+    let mut ends = None;
     for (k, best) in [&mut tally.max_depth, &mut tally.max_area]
         .into_iter()
         .enumerate()
     {
+        // A peak inside only where the value grows at the start and no longer at the end
+        // (a step is short against the motion: no second turn inside it). Sampled at
+        // mid-step on every step, the law cost the polygon an evaluation per step.
+        if !(g0[k] && !g1[k]) {
+            continue;
+        }
+        let ends =
+            *ends.get_or_insert_with(|| [of(start.forces.overlap), sample(0.5 * frac), of(end)]);
         let f3 = [ends[0][k], ends[1][k], ends[2][k]];
-        *best = best.max(peak(|th| sample(th)[k], f3, frac));
+        *best = best.max(peak(|th| sample(th)[k], f3, frac, precision));
     }
+}
+
+/// The rates of a held polygon's depth and overlap area at state `s` (evaluation `e`): a body
+/// point at x (from the centre) sinks at -(v_y + omega x), so the depth grows at that rate at
+/// the deepest corner, and the area at the chord times it at the chord's midpoint (the chord's
+/// points sink at a rate linear in x).
+fn rates(s: &State, o: Option<Overlap>) -> [f64; 2] {
+    let Some(o) = o else {
+        return [0.0; 2];
+    };
+    let sink = |x: f64| -(s[VY] + s[OM] * x);
+    [sink(o.x_low), o.chord * sink(o.x_mid)]
 }
 
 /// [`track_extremes`] for a disc or sphere, whose depth is r - y and whose overlap grows with
@@ -76,7 +110,7 @@ fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tall
 
 /// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and
 /// frac; -inf otherwise (the ends are recorded as step ends).
-fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
+fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64, precision: f64) -> f64 {
     // Parabola through the three samples: concave with its vertex within the step (a little
     // margin, so that a peak just past a sample is not missed).
     let curv = f0 - 2.0 * fm + f1;
@@ -87,9 +121,5 @@ fn peak(f: impl Fn(f64) -> f64, [f0, fm, f1]: [f64; 3], frac: f64) -> f64 {
     if !(-0.1..=1.1).contains(&vertex) {
         return f64::NEG_INFINITY;
     }
-    // Near its peak the value moves like the square of the distance to it: a position to
-    // 1e-8 of the step leaves ~1e-16 of the value's change over the step, at round-off.
-    roots::peak(f, (0.0, frac), fm, 1e-8 * frac.max(1e-300))
-        .max(f0)
-        .max(f1)
+    roots::peak(f, (0.0, frac), fm, precision).max(f0).max(f1)
 }

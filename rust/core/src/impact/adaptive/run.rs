@@ -314,7 +314,7 @@ impl<'a, 't> Run<'a, 't> {
                 .ode
                 .switch_in(&self.mode, ev, step, (&self.k1, &self.e1))
             {
-                if matches!(ev, Event::LeaveLeft | Event::LeaveRight | Event::Separate) {
+                if self.ode.ends_contact(&self.mode, ev) {
                     leaving = Some(th);
                 }
                 if first.is_none_or(|(t0, _)| th < t0) {
@@ -322,8 +322,9 @@ impl<'a, 't> Run<'a, 't> {
                 }
             }
         }
-        // Whatever ends the step first, a corner that leaves inside it may leave after the
-        // clip switched off, which the step's end state (past the leave point) cannot show.
+        // Whatever ends the step first, the contact's last corner may leave (or the disc
+        // separate) after the clip switched off, which the step's end state (past the leave
+        // point) cannot show.
         let clip = leaving.and_then(|th| self.ode.clip_before_leaving(&self.mode, step, th));
         match (first, clip) {
             (Some((t0, _)), Some((tc, ev))) if tc < t0 => Some((tc, ev)),

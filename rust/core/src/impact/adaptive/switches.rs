@@ -4,9 +4,9 @@
 //! `Reference::locate` (`events.rs`).
 
 use super::law::{Eval, Reference};
-use super::piece::{Event, Mode, Tan};
+use super::piece::{Event, Mode, Tan, Touch};
 use super::step::Step;
-use super::State;
+use super::{State, OM, VY};
 use crate::integrate::dopri::C;
 use crate::numerics::roots;
 
@@ -25,6 +25,10 @@ impl Reference<'_> {
             return None;
         }
         if ev == Event::ToStick && g1 <= 0.0 && self.stays_slipping(m, step, start.1) {
+            return None;
+        }
+        let entering = matches!(ev, Event::EnterLeft | Event::EnterRight);
+        if entering && g1 <= 0.0 && self.stays_up(m, ev, step, (-g1, start.0)) {
             return None;
         }
         if let Some(parts) = interior_samples(ev) {
@@ -98,6 +102,33 @@ impl Reference<'_> {
         bound < 0.0 && bound.is_finite()
     }
 
+    /// Whether the corner next to the run that event `ev` watches stays above the plate through
+    /// `step`, from its height at the step's ends (`height_end` at the end) and the bound
+    /// M h^2 / 8 on how far a function whose second derivative is bounded by M falls below the
+    /// chord between its ends. The corner's height has the second derivative
+    /// a_y + alpha x - omega^2 y (x, y its place from the centre), bounded by
+    /// |a_y| + (|alpha| + omega^2) |v_k|: M is twice the larger of that at the step's two ends
+    /// (`k1` the derivative at its start), for the accelerations' change inside the step.
+    /// Then no sample inside can find the corner below the plate, and its eight samples (with
+    /// a sine and cosine each, a third of the 120-gon's time) are skipped.
+    fn stays_up(&self, m: &Mode, ev: Event, step: &Step, (height_end, k1): (f64, &State)) -> bool {
+        let Touch::Poly { first, len, .. } = m.touch else {
+            return false;
+        };
+        let n = self.verts.len();
+        let k = if ev == Event::EnterLeft {
+            first + n - 1
+        } else {
+            first + len
+        };
+        let arm = self.verts[k % n].norm();
+        let curvature = |d: &State, s: &State| d[VY].abs() + (d[OM].abs() + s[OM] * s[OM]) * arm;
+        let bound = 2.0 * curvature(k1, &step.y0).max(curvature(&step.k_end(), &step.y1));
+        let height_start = -self.event_value(m, ev, &step.y0);
+        let h = step.h_len();
+        height_start.min(height_end) > 0.125 * bound * h * h
+    }
+
     /// The first switch of `ev` inside `step` from its function sampled at `parts` equal
     /// parts (`g0` its value at the start, computed only when needed: off the disc the slip ->
     /// stick test differences two more evaluations of the law; `g1` at the end): the first positive
@@ -160,7 +191,20 @@ impl Reference<'_> {
         Some(self.locate_in(m, ev, step, (from.0, Some(from.1)), (th, v)))
     }
 
-    /// A clip switch before a corner leaves (or the disc separates) at `th` of `step`. With
+    /// Whether `ev` ends the contact: the disc separates or the last submerged corner leaves
+    /// (a corner that leaves others submerged leaves the held formulas a contact past its leave
+    /// point, whose clip the step's end shows; sampled for every leave, the clip's function
+    /// cost the 120-gon a tenth of its evaluations).
+    pub(super) fn ends_contact(&self, m: &Mode, ev: Event) -> bool {
+        match (ev, m.touch) {
+            (Event::Separate, _) => true,
+            (Event::LeaveLeft, Touch::Poly { len, .. }) => len == 1,
+            _ => false,
+        }
+    }
+
+    /// A clip switch before the contact ends (the last corner leaves or the disc separates)
+    /// at `th` of `step`. With
     /// damping the force pulls in the last stretch before a corner leaves (F = delta times
     /// (k delta + c delta') < 0 as delta -> 0 while it falls), so the clip switches off there; the
     /// check at the step's end cannot see it, since past the leave point the held formulas
