@@ -348,7 +348,7 @@ fn finite_plate_edge_cuts_the_overlap() {
     assert!((n[0] - s).abs() < 1e-9 && (n[1] - s).abs() < 1e-9, "{n:?}");
     // Far from the ends the finite plate is the half-plane.
     let gon = Polygon::regular(r, 120).unwrap();
-    let shape = Shape::Polygon(gon.clone());
+    let shape = Shape::Polygon(std::sync::Arc::new(gon.clone()));
     let y = shape.touch_height(0.2) - 1e-3;
     let p = plate.overlap(&gon, -0.05, y, 0.2).unwrap();
     let h = restitution_core::plate_overlap(&shape, OverlapMethod::HalfPlane, y, 0.2).unwrap();

@@ -386,7 +386,7 @@ mod tests {
     fn square_face_down_matches_half_plane() {
         let s = Polygon::regular(2f64.sqrt(), 4).unwrap();
         let phi = std::f64::consts::FRAC_PI_4;
-        let y = Shape::Polygon(s.clone()).touch_height(phi) - 0.1;
+        let y = Shape::Polygon(std::sync::Arc::new(s.clone())).touch_height(phi) - 0.1;
         let a = s.clip_below_plate(y, phi).unwrap();
         let b = plate_overlap(&s, y, phi).unwrap();
         assert!((a.area - b.area).abs() < 1e-14, "{a:?} vs {b:?}");

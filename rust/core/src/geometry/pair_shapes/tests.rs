@@ -3,11 +3,11 @@ use crate::geometry::disc_segment_at;
 use std::f64::consts::PI;
 
 fn square(r: f64) -> Shape {
-    Shape::Polygon(Polygon::regular(r, 4).unwrap())
+    Shape::Polygon(std::sync::Arc::new(Polygon::regular(r, 4).unwrap()))
 }
 
 fn ngon(r: f64, n: usize) -> Shape {
-    Shape::Polygon(Polygon::regular(r, n).unwrap())
+    Shape::Polygon(std::sync::Arc::new(Polygon::regular(r, n).unwrap()))
 }
 
 /// Area of the overlap by counting a fine grid's points inside both bodies, over a box of
