@@ -7,7 +7,6 @@
 //! three spins, two tangential dampings, four tolerances) runs behind `--ignored`:
 //! `cargo test --release --test adaptive -- --ignored --nocapture`.
 
-use restitution_core::impact::adaptive::LOCAL_TOL_PER_TARGET;
 use restitution_core::{
     simulate, simulate_reference, Initial, Integrator, Record, ReferenceOptions, Scene, Shape,
 };
@@ -352,7 +351,7 @@ fn short_stick_and_slip_phases_are_not_lost() {
         let rec = adaptive(&case, tol, dt_factor);
         let err = error(&rec, &reference, &case.init);
         assert_eq!(rec.slip_events, reference.slip_events, "{}", case.what);
-        let bound = 2.0 * LOCAL_TOL_PER_TARGET * tol;
+        let bound = 2.0 * case.scene.local_tol_per_target() * tol;
         assert!(err <= bound, "{}: error {err:e}", case.what);
     }
 }

@@ -164,7 +164,8 @@ fn run_adaptive<G: PairGeometry>(
     cancel: &Cancel,
 ) -> Result<Record> {
     let law = &pair.law;
-    let tol = law.scene.local_tol();
+    // The particle's scene, which names the partner: the law's is a lone disc's.
+    let tol = pair.particle.scene.local_tol();
     let n_c = budget::reference_contact_steps(law, init, depth_est, law.dt, tol);
     let limits = (depth_est, tol, budget::budget_for(law, n_c));
     adaptive::integrate(pair, init, (geometry, start), limits, trace, cancel)
