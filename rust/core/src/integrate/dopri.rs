@@ -146,6 +146,30 @@ impl<const N: usize, const M: usize> DenseStep<N, M> {
         self.k[6]
     }
 
+    /// The whole state (all `N` components, the last `N - M` formed here rather than kept) at
+    /// fraction `theta` of the step and, per component, how far it lies from the cubic Hermite
+    /// interpolant of the step's ends and their derivatives (one order lower): an estimate of
+    /// the interpolant's own error that overstates it.
+    pub fn at_with_gap(&self, theta: f64) -> ([f64; N], [f64; N]) {
+        let eta = 1.0 - theta;
+        let (h00, h10) = ((1.0 + 2.0 * theta) * eta * eta, theta * eta * eta);
+        let (h01, h11) = (theta * theta * (3.0 - 2.0 * theta), -theta * theta * eta);
+        let (mut s, mut gap) = ([0.0; N], [0.0; N]);
+        for i in 0..N {
+            s[i] = if i < M {
+                self.component_at(theta, i)
+            } else {
+                self.interpolate(theta, i, self.coefficients(i))
+            };
+            let hermite = h00 * self.y0[i]
+                + h10 * self.h * self.k[0][i]
+                + h01 * self.y1[i]
+                + h11 * self.h * self.k[6][i];
+            gap[i] = (s[i] - hermite).abs();
+        }
+        (s, gap)
+    }
+
     /// The state at fraction `theta` of the step (4th-order interpolant) in its first `M`
     /// components; the others are the step's start values, not interpolated.
     pub fn at(&self, theta: f64) -> [f64; N] {
@@ -160,17 +184,26 @@ impl<const N: usize, const M: usize> DenseStep<N, M> {
     /// (a disc's deepest point follows v_y only) need not form the whole state.
     #[inline]
     pub fn component_at(&self, theta: f64, i: usize) -> f64 {
+        let dense = self
+            .dense
+            .get_or_init(|| std::array::from_fn(|i| self.coefficients(i)));
+        self.interpolate(theta, i, dense[i])
+    }
+
+    /// The dense output's coefficients r2 ... r5 of component `i`.
+    #[inline]
+    fn coefficients(&self, i: usize) -> [f64; 4] {
+        let r2 = self.y1[i] - self.y0[i];
+        let r3 = self.h * self.k[0][i] - r2;
+        let r4 = r2 - self.h * self.k[6][i] - r3;
+        let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
+        [r2, r3, r4, r5]
+    }
+
+    /// Component `i`'s value at `theta` from its coefficients.
+    #[inline]
+    fn interpolate(&self, theta: f64, i: usize, [r2, r3, r4, r5]: [f64; 4]) -> f64 {
         let eta = 1.0 - theta;
-        let dense = self.dense.get_or_init(|| {
-            std::array::from_fn(|i| {
-                let r2 = self.y1[i] - self.y0[i];
-                let r3 = self.h * self.k[0][i] - r2;
-                let r4 = r2 - self.h * self.k[6][i] - r3;
-                let r5 = self.h * (0..7).map(|j| D[j] * self.k[j][i]).sum::<f64>();
-                [r2, r3, r4, r5]
-            })
-        });
-        let [r2, r3, r4, r5] = dense[i];
         self.y0[i] + theta * (r2 + eta * (r3 + theta * (r4 + eta * r5)))
     }
 }

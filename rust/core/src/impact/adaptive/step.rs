@@ -8,15 +8,16 @@ use super::{State, NS, XI};
 use crate::integrate::dopri::{DenseStep, C};
 
 /// The components the forces depend on: x, y, phi, the velocities and the spring (the works
-/// follow them, and are not interpolated inside a step).
-const MECHANICAL: usize = XI + 1;
+/// follow them; a piece that ends on the dense output forms them there,
+/// `DenseStep::at_with_gap`).
+const INTERPOLATED: usize = XI + 1;
 
 /// One accepted Runge-Kutta step with what its dense output and the switches need
 /// (`Default`: a blank one for [`Reference::dp_step`] to write into).
 #[derive(Default)]
 pub(super) struct Step {
     /// The step itself: its ends, stages, error estimate and dense output.
-    dp: DenseStep<NS, MECHANICAL>,
+    dp: DenseStep<NS, INTERPOLATED>,
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pub(super) pull: Option<f64>,
@@ -32,7 +33,7 @@ pub(super) struct Step {
 }
 
 impl std::ops::Deref for Step {
-    type Target = DenseStep<NS, MECHANICAL>;
+    type Target = DenseStep<NS, INTERPOLATED>;
 
     fn deref(&self) -> &Self::Target {
         &self.dp
@@ -63,10 +64,16 @@ impl Reference<'_> {
         });
         out.pull = pull;
         out.stick_span = stick_span;
+        self.scaled_norm(m, &out.dp.err)
+    }
+
+    /// The largest of the components of `err` (absolute errors of the state) in units of the
+    /// local tolerance, in mode `m`: the norm the steps are accepted by.
+    pub(super) fn scaled_norm(&self, m: &Mode, err: &State) -> f64 {
         // The spring elongation is not integrated outside stick (there it is algebraic).
         (0..NS)
             .filter(|&i| i != XI || m.tan == Tan::Stick)
-            .map(|i| out.dp.err[i].abs() * self.error_weight[i])
+            .map(|i| err[i].abs() * self.error_weight[i])
             .fold(0.0, f64::max)
     }
 }
