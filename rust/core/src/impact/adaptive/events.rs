@@ -386,38 +386,47 @@ mod tests {
                 gamma_t: 0.5,
                 ..Scene::default()
             };
-            let model = Model::new(&scene).unwrap();
-            let init = Initial::from_angle(0.0357, 40.0, 0.0, 0.0);
-            let depth_est = estimate_max_depth(&model, &init).unwrap();
-            let (ode, _) =
-                Reference::for_impact(&model, &init, depth_est, &ReferenceOptions::default());
-            let r = model.r;
-            for frac in [1e-3, 0.05, 0.3, 0.9] {
-                for (vy, om, sg) in [(-0.02, 3.0, 1.0), (0.01, -5.0, -1.0), (-0.005, 0.0, 1.0)] {
-                    let mut s: State = [0.0; NS];
-                    s[Y] = r - frac * depth_est;
-                    s[VX] = 0.02;
-                    s[VY] = vy;
-                    s[OM] = om;
-                    s[XI] = 0.0;
-                    let m = Mode {
-                        touch: Touch::Disc,
-                        clip_on: true,
-                        clip_hold: false,
-                        tan: Tan::Slip(sg),
-                        unloading: false,
-                    };
-                    let (d, e) = ode.eval(&m, &s);
-                    let closed = ode.disc_rates(&s, &d, &e).unwrap();
-                    // Central differences err like h^2 (1e-4 of the value at 1e-3 of the
-                    // depth, where the damping's rate grows like depth^-1/2) and, at finer
-                    // steps, by round-off: the closed form must lie within the truncation
-                    // error that halving the step reveals, or 1e-8 of the value.
-                    let what = format!("{law:?} depth {frac} vy {vy} omega {om}");
-                    assert_differences_agree(&ode, (&m, &s, &d, &e), closed, &what);
+            with_reference(&scene, |ode, depth_est| {
+                let r = ode.model.r;
+                for frac in [1e-3, 0.05, 0.3, 0.9] {
+                    for (vy, om, sg) in [(-0.02, 3.0, 1.0), (0.01, -5.0, -1.0), (-0.005, 0.0, 1.0)]
+                    {
+                        let mut s: State = [0.0; NS];
+                        s[Y] = r - frac * depth_est;
+                        s[VX] = 0.02;
+                        s[VY] = vy;
+                        s[OM] = om;
+                        s[XI] = 0.0;
+                        let m = Mode {
+                            touch: Touch::Disc,
+                            clip_on: true,
+                            clip_hold: false,
+                            tan: Tan::Slip(sg),
+                            unloading: false,
+                        };
+                        let (d, e) = ode.eval(&m, &s);
+                        let closed = ode.disc_rates(&s, &d, &e).unwrap();
+                        // Central differences err like h^2 (1e-4 of the value at 1e-3 of the
+                        // depth, where the damping's rate grows like depth^-1/2) and, at finer
+                        // steps, by round-off: the closed form must lie within the truncation
+                        // error that halving the step reveals, or 1e-8 of the value.
+                        let what = format!("{law:?} depth {frac} vy {vy} omega {om}");
+                        assert_differences_agree(ode, (&m, &s, &d, &e), closed, &what);
+                    }
                 }
-            }
+            });
         }
+    }
+
+    /// `check` with the reference path's ODE of one impact of `scene` (the preset's speed at
+    /// 40 deg) and its estimated largest depth.
+    fn with_reference(scene: &Scene, check: impl FnOnce(&Reference, f64)) {
+        let model = Model::new(scene).unwrap();
+        let init = Initial::from_angle(0.0357, 40.0, 0.0, 0.0);
+        let depth_est = estimate_max_depth(&model, &init).unwrap();
+        let (ode, _) =
+            Reference::for_impact(&model, &init, depth_est, &ReferenceOptions::default());
+        check(&ode, depth_est);
     }
 
     /// The closed form `closed` of (dF_n/dt, d(c_t v_t)/dt) at `s` in mode `m` against central
@@ -471,34 +480,32 @@ mod tests {
                 mu: 0.5,
                 ..Scene::default()
             };
-            let model = Model::new(&scene).unwrap();
-            let init = Initial::from_angle(0.0357, 40.0, 0.0, 0.0);
-            let depth_est = estimate_max_depth(&model, &init).unwrap();
-            let (ode, _) =
-                Reference::for_impact(&model, &init, depth_est, &ReferenceOptions::default());
-            for k in 0..12 {
-                let phi = 0.37 * k as f64;
-                let touch_y = model.scene.shape.touch_height(phi);
-                for frac in [0.02, 0.3, 1.0] {
-                    for (vy, om, sg) in [(-0.02, 3.0, 1.0), (0.01, -5.0, -1.0), (-0.005, 0.0, 1.0)]
-                    {
-                        let mut s: State = [0.0; NS];
-                        (s[Y], s[PHI], s[VX], s[VY], s[OM]) =
-                            (touch_y - frac * depth_est, phi, 0.02, vy, om);
-                        let m = Mode {
-                            touch: ode.initial_run(s[Y], phi),
-                            clip_on: true,
-                            clip_hold: false,
-                            tan: Tan::Slip(sg),
-                            unloading: false,
-                        };
-                        let (d, e) = ode.eval(&m, &s);
-                        let closed = ode.polygon_rates(&m, &s, &d, &e).unwrap();
-                        let what = format!("{n}-gon phi {phi} depth {frac} vy {vy} omega {om}");
-                        assert_differences_agree(&ode, (&m, &s, &d, &e), closed, &what);
+            with_reference(&scene, |ode, depth_est| {
+                for k in 0..12 {
+                    let phi = 0.37 * k as f64;
+                    let touch_y = ode.model.scene.shape.touch_height(phi);
+                    for frac in [0.02, 0.3, 1.0] {
+                        for (vy, om, sg) in
+                            [(-0.02, 3.0, 1.0), (0.01, -5.0, -1.0), (-0.005, 0.0, 1.0)]
+                        {
+                            let mut s: State = [0.0; NS];
+                            (s[Y], s[PHI], s[VX], s[VY], s[OM]) =
+                                (touch_y - frac * depth_est, phi, 0.02, vy, om);
+                            let m = Mode {
+                                touch: ode.initial_run(s[Y], phi),
+                                clip_on: true,
+                                clip_hold: false,
+                                tan: Tan::Slip(sg),
+                                unloading: false,
+                            };
+                            let (d, e) = ode.eval(&m, &s);
+                            let closed = ode.polygon_rates(&m, &s, &d, &e).unwrap();
+                            let what = format!("{n}-gon phi {phi} depth {frac} vy {vy} omega {om}");
+                            assert_differences_agree(ode, (&m, &s, &d, &e), closed, &what);
+                        }
                     }
                 }
-            }
+            });
         }
     }
 }
