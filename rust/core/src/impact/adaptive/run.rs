@@ -348,7 +348,7 @@ impl<'a, 't> Run<'a, 't> {
                 // switches, and the budget bounds its time (uncounted, a 4096-gon's rattle ran
                 // 0.85 s to the budget instead of 0.66).
                 self.attempts += 1;
-                match self.state_at_switch(step, th) {
+                match self.ode.state_at_switch(&self.mode, step, th) {
                     Some((s_th, err)) => (s_th, th * h, Some(ev), err, None),
                     None => {
                         // Redone to the switch, the state there has full Runge-Kutta accuracy.
@@ -413,22 +413,6 @@ impl<'a, 't> Run<'a, 't> {
         } else {
             h_next
         };
-    }
-
-    /// The state where a piece ends inside `step`, at fraction `th`, from the step's dense
-    /// output, with its local error, where that output agrees with the cubic Hermite
-    /// interpolant of the step's ends (one order lower) to the local tolerance: the gap between
-    /// them overstates the dense output's own error, which joins `err_est` as that gap. `None`
-    /// where they disagree (near a root singularity of the force, at tight tolerances): the
-    /// step is then redone up to the switch. Redone always, a corner crossing cost the 120-gon
-    /// a step (six evaluations of the law) besides its location; taken from the dense output
-    /// always, the disc erred 6.3 tol at tol 1e-10.
-    fn state_at_switch(&self, step: &Step, th: f64) -> Option<(State, State)> {
-        let (s_th, gap) = step.at_with_gap(th);
-        (self.ode.scaled_norm(&self.mode, &gap) <= 1.0).then(|| {
-            let err = std::array::from_fn(|i| th * step.err[i].abs() + gap[i]);
-            (s_th, err)
-        })
     }
 
     /// Counts consecutive negligible pieces ended by the same kind of switch: shorter than
