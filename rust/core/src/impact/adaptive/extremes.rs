@@ -55,7 +55,8 @@ pub(super) fn track_extremes(
         // A peak inside only where the value grows at the start and no longer at the end
         // (a step is short against the motion: no second turn inside it). Sampled at
         // mid-step on every step, the law cost the polygon an evaluation per step.
-        if !(g0[k] && !g1[k]) {
+        let peaks_inside = g0[k] && !g1[k];
+        if !peaks_inside {
             continue;
         }
         let ends =

@@ -492,8 +492,8 @@ impl<'a, 't> Run<'a, 't> {
                     tr,
                     self.t,
                     &self.s,
-                    &e,
-                    self.ode.xi_of(&self.mode, &self.s, &e),
+                    e,
+                    self.ode.xi_of(&self.mode, &self.s, e),
                 );
             }
         }
