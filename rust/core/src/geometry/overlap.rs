@@ -30,6 +30,29 @@ pub struct Overlap {
     pub corners: Corners,
 }
 
+impl Overlap {
+    /// The rate at which the body at velocity `v` = (v_x, v_y, omega) sinks at the point `x`
+    /// (from the centre) on the plate: -(v_y + omega x).
+    #[inline(always)]
+    fn sink(v: &[f64; 3], x: f64) -> f64 {
+        -(v[1] + v[2] * x)
+    }
+
+    /// dA/dt for the body velocity `v`: the chord times the rate at which the body sinks at
+    /// its midpoint (the rate is linear along the chord), -l (v_y + omega x_mid).
+    #[inline(always)]
+    pub fn area_rate(&self, v: &[f64; 3]) -> f64 {
+        self.chord * Self::sink(v, self.x_mid)
+    }
+
+    /// The rate at which the lowest point deepens for the body velocity `v`:
+    /// -(v_y + omega x_low).
+    #[inline(always)]
+    pub fn depth_rate(&self, v: &[f64; 3]) -> f64 {
+        Self::sink(v, self.x_low)
+    }
+}
+
 /// The chain of a polygon's vertices at or below the plate: the first of them in
 /// counter-clockwise order and how many there are (below the plate they are contiguous).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

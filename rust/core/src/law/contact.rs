@@ -166,7 +166,7 @@ impl NormalForce {
             NormalLaw::Area => {
                 // Exact rate of the overlap area: minus the chord times the normal velocity
                 // of the body at the chord's midpoint (the body velocity is linear along it).
-                let da_dt = -o.chord * (v[1] + v[2] * o.x_mid);
+                let da_dt = o.area_rate(v);
                 (
                     o.area * self.e_over_l,
                     self.area_damping * da_dt,
@@ -176,7 +176,7 @@ impl NormalForce {
             }
             NormalLaw::Linear { kn, cn } => {
                 // One spring-dashpot at the lowest point.
-                let ddepth_dt = -(v[1] + v[2] * o.x_low);
+                let ddepth_dt = o.depth_rate(v);
                 (kn * o.depth, cn * ddepth_dt, o.x_low, o.x_low)
             }
             NormalLaw::Hertz { .. } => {
@@ -275,9 +275,8 @@ impl NormalForce {
             return None;
         }
         let sink = v[1] + v[2] * o.x_mid;
-        let da_dt = -o.chord * sink;
         let d2a_dt2 = -(chord_rate * sink + o.chord * (a[1] + a[2] * o.x_mid + v[2] * mid_rate));
-        Some(self.e_over_l * da_dt + self.area_damping * d2a_dt2)
+        Some(self.e_over_l * o.area_rate(v) + self.area_damping * d2a_dt2)
     }
 }
 

@@ -372,12 +372,12 @@ impl Partner {
 /// 92.5 % of one setting's impacts.
 pub const LOCAL_TOL_PER_TARGET: f64 = 0.5;
 
-/// [`LOCAL_TOL_PER_TARGET`] for a round body (disc, sphere) on the plate: no corner crosses
-/// the plate, so fewer located switches add their errors to the steps'. (Not for pairs: two
-/// discs at 0.75 erred 3.35 tol at tol 1e-8 in `adaptive_pairs_meet_their_tolerance`.) Over the same grid the disc's
-/// largest error is 0.94 tol at 0.5, 1.41 tol at 0.75 (5 % fewer steps at tol 1e-6, largest
-/// step 1) and 1.88 tol at 1.0, against the polygons' 1.70 tol at 0.5; at 1.0 a slip -> stick
-/// switch of the disc at theta 54, mu 0.7 chattered into a spurious micro-stick at tol 1e-4
+/// [`LOCAL_TOL_PER_TARGET`] for a round body (disc, sphere) on the plate: no corner crosses the
+/// plate, so fewer located switches add their errors to the steps'. (Not for pairs: two discs at
+/// 0.75 erred 3.35 tol at tol 1e-8 in `adaptive_pairs_meet_their_tolerance`.) Over the same grid
+/// the disc's largest error is 0.94 tol at 0.5, 1.41 tol at 0.75 (5 % fewer steps at tol 1e-6,
+/// largest step 1) and 1.88 tol at 1.0, against the polygons' 1.70 tol at 0.5; at 1.0 a slip ->
+/// stick switch of the disc at theta 54, mu 0.7 chattered into a spurious micro-stick at tol 1e-4
 /// (`short_stick_and_slip_phases_are_not_lost`), and at 2.0 the error reached 3.8 tol.
 pub const ROUND_LOCAL_TOL_PER_TARGET: f64 = 0.75;
 

@@ -243,8 +243,7 @@ impl Reference<'_> {
         let dx_q = slide(x_p + o.chord, corner(first + len - 1), corner(first + len));
         let rates = (dx_q - dx_p, 0.5 * (dx_p + dx_q));
         let dfn = self.normal.rate_on_area(&o, rates, &v, &a)?;
-        let da_dt = -o.chord * (v[1] + om * o.x_mid);
-        let dcy_dt = (v[1] + om * o.cx) - o.cy * da_dt / o.area;
+        let dcy_dt = (v[1] + om * o.cx) - o.cy * o.area_rate(&v) / o.area;
         let dv_t = a[0] - a[2] * (o.cy - y) - om * (dcy_dt - v[1]);
         let ddamp = self.model.spring(o.depth).2 * dv_t;
         (dfn.is_finite() && ddamp.is_finite()).then_some((dfn, ddamp))

@@ -4,7 +4,7 @@
 use super::law::{Eval, Reference};
 use super::piece::{Mode, Tally, Touch};
 use super::step::Step;
-use super::{State, OM, PHI, VY, Y};
+use super::{State, OM, PHI, VX, VY, Y};
 use crate::geometry::Overlap;
 use crate::numerics::roots;
 
@@ -66,16 +66,14 @@ pub(super) fn track_extremes(
     }
 }
 
-/// The rates of a held polygon's depth and overlap area at state `s` (evaluation `e`): a body
-/// point at x (from the centre) sinks at -(v_y + omega x), so the depth grows at that rate at
-/// the deepest corner, and the area at the chord times it at the chord's midpoint (the chord's
-/// points sink at a rate linear in x).
+/// The rates of a held polygon's depth and overlap area at state `s` with overlap `o`
+/// ([`Overlap::depth_rate`], [`Overlap::area_rate`]).
 fn rates(s: &State, o: Option<Overlap>) -> [f64; 2] {
     let Some(o) = o else {
         return [0.0; 2];
     };
-    let sink = |x: f64| -(s[VY] + s[OM] * x);
-    [sink(o.x_low), o.chord * sink(o.x_mid)]
+    let v = [s[VX], s[VY], s[OM]];
+    [o.depth_rate(&v), o.area_rate(&v)]
 }
 
 /// [`track_extremes`] for a disc or sphere, whose depth is r - y and whose overlap grows with

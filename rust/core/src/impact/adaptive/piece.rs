@@ -9,8 +9,8 @@ pub(super) enum Touch {
     Off,
     /// The disc's circular segment.
     Disc,
-    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is the
-    /// lowest of them (for the overlap's x_low only).
+    /// A polygon with the corners `first .. first + len` (cyclic) below the plate; `low` is one
+    /// of them, where a long run's search for its lowest corner starts (`law.rs`, `LONG_RUN`).
     Poly {
         first: usize,
         len: usize,

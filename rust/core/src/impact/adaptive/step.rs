@@ -67,10 +67,10 @@ impl Reference<'_> {
         self.scaled_norm(m, &out.dp.err)
     }
 
-    /// The state where a piece of mode `m` ends inside `step`, at fraction `th`, from the step's dense
-    /// output, with its local error, where that output agrees with the cubic Hermite
-    /// interpolant of the step's ends (one order lower) to the local tolerance: the gap between
-    /// them overstates the dense output's own error, which joins `err_est` as that gap. `None`
+    /// The state where a piece of mode `m` ends inside `step`, at fraction `th`, from the
+    /// step's dense output, with its local error, where that output agrees with the cubic
+    /// Hermite interpolant of the step's ends (one order lower) to the local tolerance: the gap
+    /// between them overstates the dense output's own error, which joins `err_est` as that gap. `None`
     /// where they disagree (near a root singularity of the force, at tight tolerances): the
     /// step is then redone up to the switch. Redone always, a corner crossing cost the 120-gon
     /// a step (six evaluations of the law) besides its location; taken from the dense output

@@ -203,13 +203,12 @@ impl Reference<'_> {
         }
     }
 
-    /// A clip switch before the contact ends (the last corner leaves or the disc separates)
-    /// at `th` of `step`. With
-    /// damping the force pulls in the last stretch before a corner leaves (F = delta times
-    /// (k delta + c delta') < 0 as delta -> 0 while it falls), so the clip switches off there; the
-    /// check at the step's end cannot see it, since past the leave point the held formulas
-    /// are no contact (a corner's area grows again like depth^2 above the plate): a step of
-    /// 2 t_ref once crossed the pulling tail unclipped (the 12-gon at theta 74, mu 0.5: e_N off
+    /// A clip switch before the contact ends (the last corner leaves or the disc separates) at `th`
+    /// of `step`. With damping the force pulls in the last stretch before a corner leaves (F =
+    /// delta times (k delta + c delta') < 0 as delta -> 0 while it falls), so the clip switches off
+    /// there; the check at the step's end cannot see it, since past the leave point the held
+    /// formulas are no contact (a corner's area grows again like depth^2 above the plate): a step
+    /// of 2 t_ref once crossed the pulling tail unclipped (the 12-gon at theta 74, mu 0.5: e_N off
     /// by 4e-5). Sampled on the dense output, densest towards the leave point.
     pub(super) fn clip_before_leaving(
         &self,
