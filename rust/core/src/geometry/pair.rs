@@ -86,6 +86,28 @@ impl Springs {
     }
 }
 
+/// One vertex spring of the linear law on two polygons (docs/model.md, 17.8): corner `corner`
+/// of the particle (or of the partner) pressing on edge `edge` of the other body.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SpringRef {
+    /// Whether the corner is the partner's.
+    pub partner_corner: bool,
+    /// The corner's index in its body.
+    pub corner: u32,
+    /// The other body's edge (from its vertex `edge` to the next).
+    pub edge: u32,
+}
+
+/// The vertex springs held through a piece of the adaptive path: between their switches
+/// (a corner entering or leaving the other body, or turning to another nearest edge) the
+/// law is smooth, and the switches are located as events; empty for pairings whose law is
+/// smooth without holding anything.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct HeldSprings {
+    /// The springs, in no particular order.
+    pub springs: Vec<SpringRef>,
+}
+
 /// How a pair's two bodies overlap at the lanes q = (x, y, phi1, phi2) (the particle's centre
 /// relative to the partner's, and the two orientations); one implementation per pairing, so
 /// that the pair's loop is compiled for each.
@@ -102,6 +124,22 @@ pub trait PairGeometry: Copy {
     fn touch_height(&self, phi1: f64, phi2: f64) -> f64;
     /// The largest centre distance at which the bodies can touch (m).
     fn reach(&self) -> f64;
+    /// Whether the law's springs switch where they must be held ([`HeldSprings`]).
+    fn holds_springs(&self) -> bool {
+        false
+    }
+    /// The springs at `q` to hold through a piece.
+    fn held_springs(&self, _q: &[f64; 4]) -> HeldSprings {
+        HeldSprings::default()
+    }
+    /// The contact's frame at `q` with the springs `held` (their law continued smoothly).
+    fn frame_held(&self, q: &[f64; 4], _held: &HeldSprings) -> Option<PairFrame> {
+        self.frame(q)
+    }
+    /// The event function of the springs `held` at `q`: > 0 once they are not the law's.
+    fn held_springs_value(&self, _q: &[f64; 4], _held: &HeldSprings) -> f64 {
+        f64::NEG_INFINITY
+    }
 }
 
 /// What a round pair's overlap is, measured along the line of centres.

@@ -12,11 +12,14 @@
 //! p_a, p_b (ordered along t = (n_y, -n_x)); b_1 + b_2 = l (q x n), so a rigid turn of the
 //! pair leaves the area unchanged.
 
-use super::pair::{PairFrame, PairGeometry, Springs};
+use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::parry::polygon_pair_overlap;
 use super::{Polygon, Shape};
 use disc_polygon::disc_polygon;
-use springs::{corner_springs, disc_spring};
+use springs::{
+    corner_springs, disc_spring, held_corner_springs, held_springs_value, parted_disc_patch,
+    parted_patch, springs_of_held,
+};
 use std::cell::RefCell;
 
 /// One body of a pair as its contact sees it.
@@ -109,6 +112,21 @@ thread_local! {
     static PLACED: RefCell<PlacedPair> = const { RefCell::new((Vec::new(), Vec::new())) };
 }
 
+/// Calls `f` with the placed vertices of the particle `a` (at lanes `q`) and of the partner
+/// `b` (centred at the origin).
+fn with_placed<R>(
+    (a, b): (&Polygon, &Polygon),
+    q: &[f64; 4],
+    f: impl FnOnce(&[[f64; 2]], &[[f64; 2]]) -> R,
+) -> R {
+    PLACED.with(|cell| {
+        let (pa, pb) = &mut *cell.borrow_mut();
+        place_into(pa, a, [q[0], q[1]], q[2]);
+        place_into(pb, b, [0.0, 0.0], q[3]);
+        f(pa, pb)
+    })
+}
+
 impl<'a> ShapePair<'a> {
     /// The pair of `particle` and `partner`; `None` when neither has corners (two discs or
     /// spheres: [`crate::geometry::pair`]).
@@ -138,10 +156,7 @@ impl<'a> ShapePair<'a> {
         let at = [q[0], q[1]];
         let springs = self.springs;
         match (self.particle, self.partner) {
-            (PairBody::Polygon(a), PairBody::Polygon(b)) => PLACED.with(|cell| {
-                let (pa, pb) = &mut *cell.borrow_mut();
-                place_into(pa, a, at, q[2]);
-                place_into(pb, b, [0.0, 0.0], q[3]);
+            (PairBody::Polygon(a), PairBody::Polygon(b)) => with_placed((a, b), q, |pa, pb| {
                 polygon_pair_overlap(
                     pa.iter().copied(),
                     pb.iter().copied(),
@@ -162,6 +177,72 @@ impl<'a> ShapePair<'a> {
                 self.disc_with_polygon([0.0, 0.0], r, (a, at, q[2]), at, -1.0)
             }
             (PairBody::Disc(_), PairBody::Disc(_)) => None,
+        }
+    }
+
+    /// The two polygons, when both bodies are polygons.
+    fn polygons(&self) -> Option<(&'a Polygon, &'a Polygon)> {
+        match (self.particle, self.partner) {
+            (PairBody::Polygon(a), PairBody::Polygon(b)) => Some((a, b)),
+            _ => None,
+        }
+    }
+
+    /// The linear law's disc spring of a disc-polygon pair at lanes `q`, signed where no
+    /// overlap is resolved ([`parted_disc_patch`]).
+    fn parted_disc_patch(&self, q: &[f64; 4]) -> ShapePatch {
+        let at = [q[0], q[1]];
+        let (c, r, poly, place, sign) = match (self.particle, self.partner) {
+            (PairBody::Disc(r), PairBody::Polygon(b)) => (at, r, b, ([0.0, 0.0], q[3]), 1.0),
+            (PairBody::Polygon(a), PairBody::Disc(r)) => ([0.0, 0.0], r, a, (at, q[2]), -1.0),
+            _ => unreachable!("a disc with a polygon"),
+        };
+        PLACED.with(|cell| {
+            let (verts, _) = &mut *cell.borrow_mut();
+            place_into(verts, poly, place.0, place.1);
+            parted_disc_patch(c, r, verts, at, sign)
+        })
+    }
+
+    /// The particle's and the partner's circumradii.
+    fn circumradii(&self) -> [f64; 2] {
+        [self.particle.circumradius(), self.partner.circumradius()]
+    }
+    /// The contact's frame from the overlap `p` at lanes `q`.
+    fn frame_of(&self, p: ShapePatch, q: &[f64; 4]) -> PairFrame {
+        // The contact's normal: the chord's, or under the linear law the direction of the
+        // springs' push, so that friction acts across the normal force; turned to the
+        // chord's side, so that a lone held spring's normal keeps its direction where its
+        // depth (signed, see `frame_held`) passes zero at the piece's end.
+        let push = [p.springs.push[0], p.springs.push[1]];
+        let norm = push[0].hypot(push[1]).copysign(dot(push, p.n));
+        let n = if self.springs && norm != 0.0 {
+            [push[0] / norm, push[1] / norm]
+        } else {
+            p.n
+        };
+        let (c, at) = (p.centroid, [q[0], q[1]]);
+        let t = [n[1], -n[0]];
+        // Each pair of levers sums to -(q x u), so that the torques cancel the orbit's
+        // (angular momentum); the partner's is taken from that sum, to the last bit.
+        let lever = |l1: f64, u: [f64; 2]| [l1, -l1 - cross(at, u)];
+        let arm = sub(c, at);
+        PairFrame {
+            n,
+            depth: p.depth,
+            area: p.area,
+            chord: p.chord,
+            lever_area: lever(cross(arm, n), n),
+            lever_rate_area: lever(
+                if p.chord > 0.0 {
+                    -p.b[0] / p.chord
+                } else {
+                    0.0
+                },
+                n,
+            ),
+            lever_t: lever(cross(arm, t), t),
+            springs: p.springs,
         }
     }
 
@@ -246,34 +327,56 @@ impl PairGeometry for ShapePair<'_> {
     const CORNERS: bool = true;
 
     fn frame(&self, q: &[f64; 4]) -> Option<PairFrame> {
-        let p = self.patch(q)?;
-        // The contact's normal: the chord's, or under the linear law the direction of the
-        // springs' push, so that friction acts across the normal force.
-        let push = [p.springs.push[0], p.springs.push[1]];
-        let norm = push[0].hypot(push[1]);
-        let n = if self.springs && norm > 0.0 {
-            [push[0] / norm, push[1] / norm]
-        } else {
-            p.n
-        };
-        let (c, at) = (p.centroid, [q[0], q[1]]);
-        let t = [n[1], -n[0]];
-        // Each pair of levers sums to -(q x u), so that the torques cancel the orbit's
-        // (angular momentum); the partner's is taken from that sum, to the last bit.
-        let lever = |l1: f64, u: [f64; 2]| [l1, -l1 - cross(at, u)];
-        let arm = sub(c, at);
-        Some(PairFrame {
-            n,
-            depth: p.depth,
-            area: p.area,
-            chord: p.chord,
-            lever_area: lever(cross(arm, n), n),
-            lever_rate_area: lever(-p.b[0] / p.chord, n),
-            lever_t: lever(cross(arm, t), t),
-            springs: p.springs,
-        })
+        Some(self.frame_of(self.patch(q)?, q))
     }
 
+    fn holds_springs(&self) -> bool {
+        self.springs && self.polygons().is_some()
+    }
+
+    fn held_springs(&self, q: &[f64; 4]) -> HeldSprings {
+        match self.polygons() {
+            Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
+                held_corner_springs(pa, pb, [q[0], q[1]], self.circumradii())
+            }),
+            _ => HeldSprings::default(),
+        }
+    }
+
+    fn frame_held(&self, q: &[f64; 4], held: &HeldSprings) -> Option<PairFrame> {
+        if !self.springs {
+            return self.frame(q);
+        }
+        let Some(ab) = self.polygons() else {
+            // A disc with a polygon: its one spring is smooth (C1 where the nearest feature
+            // changes) and needs no holding, only to go on where no overlap is resolved.
+            let p = self.patch(q).unwrap_or_else(|| self.parted_disc_patch(q));
+            return Some(self.frame_of(p, q));
+        };
+        let bare = ShapePair {
+            springs: false,
+            ..*self
+        };
+        let at = [q[0], q[1]];
+        let springs = with_placed(ab, q, |pa, pb| springs_of_held(pa, pb, at, held));
+        let p = match bare.patch(q) {
+            Some(p) => ShapePatch { springs, ..p },
+            // Where no overlap is resolved (just after the touch, just past the parting) the
+            // held springs go on, so that the force is smooth through the piece's ends, where
+            // the switches are located on the step's dense output.
+            None => with_placed(ab, q, |pa, pb| parted_patch(pa, pb, held, springs))?,
+        };
+        Some(self.frame_of(p, q))
+    }
+
+    fn held_springs_value(&self, q: &[f64; 4], held: &HeldSprings) -> f64 {
+        match self.polygons() {
+            Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
+                held_springs_value(pa, pb, [q[0], q[1]], self.circumradii(), held)
+            }),
+            _ => f64::NEG_INFINITY,
+        }
+    }
     fn signed_depth(&self, q: &[f64; 4]) -> f64 {
         match self.patch(q) {
             Some(p) => p.depth,

@@ -124,21 +124,20 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
         "\"auto\" for a pair (a pair's overlap is its pairing's own: the lens of two discs, \
          the disc-polygon clip or parry's intersection of two polygons)"
     );
-    // Vertex springs on a pair turn with its contact, and the adaptive path's stick/slip
-    // switches chatter among them: the reference's impact and its exchange (the same impact
-    // seen from the other body) came apart by 0.13 in e_n at mu 0.6 (docs/model.md 17.8).
-    // Verlet cannot step over the dashpots' jumps (as on the plate).
+    // Corners' dashpots jump as they enter the other body, which Verlet cannot step over (as
+    // on the plate); Gear-5 steps through them, the adaptive path locates them, holding the
+    // vertex springs between their switches (docs/model.md 17.8).
     let corners = |s: &Shape| matches!(s, Shape::Polygon(_));
     let linear = matches!(scene.normal_law, NormalLaw::Linear { .. });
     ensure_param!(
         !(linear
             && (corners(&scene.shape) || corners(&partner.shape))
-            && scene.integrator != Integrator::Gear5),
+            && scene.integrator == Integrator::Verlet),
         "integrator",
         scene.integrator.name(),
-        "\"gear5\" for normal_law \"linear\" on a pair with corners (its vertex springs turn \
-         with the contact: the adaptive path's stick/slip switches chatter among them, and \
-         Verlet cannot step over the dashpots' jumps; or use normal_law \"area\")"
+        "\"adaptive\", \"reference\" or \"gear5\" for normal_law \"linear\" on a pair with \
+         corners (Verlet cannot step over the jumps of a corner's dashpot as it enters the other \
+         body; or use normal_law \"area\")"
     );
     if let NormalLaw::Hertz { plate, .. } = scene.normal_law {
         ensure_param!(

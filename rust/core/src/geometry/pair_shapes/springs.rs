@@ -1,8 +1,8 @@
 //! The linear law's vertex springs on a pair (docs/model.md, 17.8): Cundall's vertex-edge
 //! contacts between two polygons, and the one spring between a disc and a polygon.
 
-use super::{cross, dot, inside, sub};
-use crate::geometry::pair::Springs;
+use super::{cross, dot, inside, sub, ShapePatch};
+use crate::geometry::pair::{HeldSprings, SpringRef, Springs};
 
 /// The lane direction of a force on the particle along `u` at point `x`, the particle's
 /// centre at `q`: (u, (x - q) x u, -(x x u)).
@@ -11,17 +11,23 @@ fn lane_direction(x: [f64; 2], u: [f64; 2], q: [f64; 2]) -> [f64; 4] {
     [u[0], u[1], l1, -l1 - cross(q, u)]
 }
 
-/// How deep point `x` lies inside the counter-clockwise convex polygon `poly`, and the
-/// outward normal of the edge it is nearest to (Cundall's vertex-edge contact).
-fn least_penetration(x: [f64; 2], poly: &[[f64; 2]]) -> (f64, [f64; 2]) {
-    let m = poly.len();
-    let mut best = (f64::INFINITY, [0.0, 0.0]);
-    for j in 0..m {
-        let e = sub(poly[(j + 1) % m], poly[j]);
-        let len = e[0].hypot(e[1]);
-        let depth = cross(e, sub(x, poly[j])) / len;
+/// How deep point `x` lies below the line of edge `j` of the counter-clockwise convex
+/// polygon `poly` (positive inside), and that edge's outward normal.
+#[inline(always)]
+fn edge_depth(x: [f64; 2], poly: &[[f64; 2]], j: usize) -> (f64, [f64; 2]) {
+    let e = sub(poly[(j + 1) % poly.len()], poly[j]);
+    let len = e[0].hypot(e[1]);
+    (cross(e, sub(x, poly[j])) / len, [e[1] / len, -e[0] / len])
+}
+
+/// How deep point `x` lies inside the counter-clockwise convex polygon `poly`, the outward
+/// normal of the edge it is nearest to (Cundall's vertex-edge contact), and that edge.
+fn least_penetration(x: [f64; 2], poly: &[[f64; 2]]) -> (f64, [f64; 2], usize) {
+    let mut best = (f64::INFINITY, [0.0, 0.0], 0);
+    for j in 0..poly.len() {
+        let (depth, u) = edge_depth(x, poly, j);
         if depth < best.0 {
-            best = (depth, [e[1] / len, -e[0] / len]);
+            best = (depth, u, j);
         }
     }
     best
@@ -43,9 +49,10 @@ pub(super) fn corner_springs(
             continue;
         }
         let (depth, u) = if a.contains(&x) {
-            least_penetration(x, b)
+            let (d, u, _) = least_penetration(x, b);
+            (d, u)
         } else {
-            let (d, mu) = least_penetration(x, a);
+            let (d, mu, _) = least_penetration(x, a);
             (d, [-mu[0], -mu[1]])
         };
         // A corner just inside may sit at a round-off depth of either sign: its spring is
@@ -65,34 +72,208 @@ pub(super) fn disc_spring(
     q: [f64; 2],
     sign: f64,
 ) -> Springs {
+    let (depth, u, x) = disc_penetration(c, r, poly);
     let mut springs = Springs::default();
-    let (depth, u, x) = if inside(c, poly) {
-        let (e, nu) = least_penetration(c, poly);
-        (r + e, nu, [c[0] - e * nu[0], c[1] - e * nu[1]])
-    } else {
-        let m = poly.len();
-        let mut best = (f64::INFINITY, [0.0, 0.0]);
-        for j in 0..m {
-            let (p, w) = (poly[j], poly[(j + 1) % m]);
-            let d = sub(w, p);
-            let t = (dot(sub(c, p), d) / dot(d, d)).clamp(0.0, 1.0);
-            let foot = [p[0] + t * d[0], p[1] + t * d[1]];
-            let dist = (c[0] - foot[0]).hypot(c[1] - foot[1]);
-            if dist < best.0 {
-                best = (dist, foot);
-            }
-        }
-        let (dist, foot) = best;
-        (
-            r - dist,
-            [(c[0] - foot[0]) / dist, (c[1] - foot[1]) / dist],
-            foot,
-        )
-    };
     // The overlap exists (the caller's clip found it): a round-off depth is a zero one.
     springs.add(
         depth.max(0.0),
         lane_direction(x, [sign * u[0], sign * u[1]], q),
     );
     springs
+}
+
+/// The disc's penetration r - dist(c, polygon) (signed: < 0 apart), the unit direction from
+/// the polygon's nearest point to the centre, and that point.
+fn disc_penetration(c: [f64; 2], r: f64, poly: &[[f64; 2]]) -> (f64, [f64; 2], [f64; 2]) {
+    if inside(c, poly) {
+        let (e, nu, _) = least_penetration(c, poly);
+        return (r + e, nu, [c[0] - e * nu[0], c[1] - e * nu[1]]);
+    }
+    let m = poly.len();
+    let mut best = (f64::INFINITY, [0.0, 0.0]);
+    for j in 0..m {
+        let (p, w) = (poly[j], poly[(j + 1) % m]);
+        let d = sub(w, p);
+        let t = (dot(sub(c, p), d) / dot(d, d)).clamp(0.0, 1.0);
+        let foot = [p[0] + t * d[0], p[1] + t * d[1]];
+        let dist = (c[0] - foot[0]).hypot(c[1] - foot[1]);
+        if dist < best.0 {
+            best = (dist, foot);
+        }
+    }
+    let (dist, foot) = best;
+    (
+        r - dist,
+        [(c[0] - foot[0]) / dist, (c[1] - foot[1]) / dist],
+        foot,
+    )
+}
+
+/// The disc's one spring where the overlap is not resolved (just after the touch, just past
+/// the parting): signed, so that the force is smooth through the piece's ends; the contact
+/// point is the polygon's point nearest to the centre.
+pub(super) fn parted_disc_patch(
+    c: [f64; 2],
+    r: f64,
+    poly: &[[f64; 2]],
+    q: [f64; 2],
+    sign: f64,
+) -> ShapePatch {
+    let (depth, u, x) = disc_penetration(c, r, poly);
+    let n = [sign * u[0], sign * u[1]];
+    let mut springs = Springs::default();
+    springs.add(depth, lane_direction(x, n, q));
+    ShapePatch {
+        area: 0.0,
+        depth,
+        chord: 0.0,
+        n,
+        centroid: x,
+        b: [0.0; 2],
+        springs,
+    }
+}
+
+/// The corner springs of two polygons (placed vertices `a` of the particle, its centre at
+/// `q`, and `b` of the partner, centred at the origin; circumradii `reach`) to hold through a
+/// piece of the adaptive path: each corner inside the other body, and the edge it is nearest
+/// to. The same springs as [`corner_springs`], found without the overlap's vertices.
+pub(super) fn held_corner_springs(
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+    q: [f64; 2],
+    reach: [f64; 2],
+) -> HeldSprings {
+    let mut held = HeldSprings::default();
+    for (partner_corner, corners, poly) in [(false, a, b), (true, b, a)] {
+        let (centre, r) = if partner_corner {
+            (q, reach[0])
+        } else {
+            ([0.0, 0.0], reach[1])
+        };
+        for (i, &x) in corners.iter().enumerate() {
+            if within(x, centre, r) {
+                let (depth, _, edge) = least_penetration(x, poly);
+                if depth > 0.0 {
+                    held.springs.push(SpringRef {
+                        partner_corner,
+                        corner: i as u32,
+                        edge: edge as u32,
+                    });
+                }
+            }
+        }
+    }
+    held
+}
+
+/// Whether `x` lies within distance `r` of `centre`.
+#[inline(always)]
+fn within(x: [f64; 2], centre: [f64; 2], r: f64) -> bool {
+    let d = sub(x, centre);
+    dot(d, d) <= r * r
+}
+
+/// The corner and the body it presses into of held spring `s`, and the sign of its push on
+/// the particle.
+#[inline(always)]
+fn held_corner<'p>(
+    s: &SpringRef,
+    a: &'p [[f64; 2]],
+    b: &'p [[f64; 2]],
+) -> ([f64; 2], &'p [[f64; 2]], f64) {
+    if s.partner_corner {
+        (b[s.corner as usize], a, -1.0)
+    } else {
+        (a[s.corner as usize], b, 1.0)
+    }
+}
+
+/// The held springs' forces: each corner's depth below its held edge's line (signed: the
+/// law continued smoothly across the piece's end, where the switch is located).
+pub(super) fn springs_of_held(
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+    q: [f64; 2],
+    held: &HeldSprings,
+) -> Springs {
+    let mut springs = Springs::default();
+    for s in &held.springs {
+        let (x, poly, sign) = held_corner(s, a, b);
+        let (depth, u) = edge_depth(x, poly, s.edge as usize);
+        springs.add(depth, lane_direction(x, [sign * u[0], sign * u[1]], q));
+    }
+    springs
+}
+
+/// The event function of the held springs (> 0 once they are no longer the law's): a held
+/// corner out of its edge's line (-depth), nearer to another edge than to its own (depth
+/// minus the other's), or a corner not held inside the other body (its least penetration).
+/// The largest of continuous functions: continuous, so a root finder locates the switch.
+pub(super) fn held_springs_value(
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+    q: [f64; 2],
+    reach: [f64; 2],
+    held: &HeldSprings,
+) -> f64 {
+    let mut value = f64::NEG_INFINITY;
+    for s in &held.springs {
+        let (x, poly, _) = held_corner(s, a, b);
+        let depth = edge_depth(x, poly, s.edge as usize).0;
+        value = value.max(-depth);
+        for k in 0..poly.len() {
+            if k != s.edge as usize {
+                value = value.max(depth - edge_depth(x, poly, k).0);
+            }
+        }
+    }
+    for (partner_corner, corners, poly) in [(false, a, b), (true, b, a)] {
+        let (centre, r) = if partner_corner {
+            (q, reach[0])
+        } else {
+            ([0.0, 0.0], reach[1])
+        };
+        for (i, &x) in corners.iter().enumerate() {
+            let is_held =
+                |s: &SpringRef| s.partner_corner == partner_corner && s.corner as usize == i;
+            if within(x, centre, r) && !held.springs.iter().any(is_held) {
+                value = value.max(least_penetration(x, poly).0);
+            }
+        }
+    }
+    value
+}
+
+/// The contact of held springs where the bodies' overlap is not resolved (none yet, or no
+/// longer): no area, the springs' signed depths (the deepest is the pair's depth, < 0 once
+/// they have parted), the normal their edges' mean, and the held corners' mean as the point
+/// where friction acts (where the overlap shrinks to as they part). `None` with none held.
+pub(super) fn parted_patch(
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+    held: &HeldSprings,
+    springs: Springs,
+) -> Option<ShapePatch> {
+    let count = held.springs.len() as f64;
+    let (mut n, mut centroid, mut depth) = ([0.0; 2], [0.0; 2], f64::NEG_INFINITY);
+    for s in &held.springs {
+        let (x, poly, sign) = held_corner(s, a, b);
+        let (d, u) = edge_depth(x, poly, s.edge as usize);
+        depth = depth.max(d);
+        for i in 0..2 {
+            n[i] += sign * u[i];
+            centroid[i] += x[i] / count;
+        }
+    }
+    let norm = n[0].hypot(n[1]);
+    (norm > 0.0).then(|| ShapePatch {
+        area: 0.0,
+        depth,
+        chord: 0.0,
+        n: [n[0] / norm, n[1] / norm],
+        centroid,
+        b: [0.0; 2],
+        springs,
+    })
 }

@@ -26,6 +26,7 @@ mod fixed;
 mod flight;
 mod ode;
 mod record;
+mod switches;
 
 /// Simulates one impact of the pair of a validated particle model whose scene has a partner.
 pub(super) fn run(

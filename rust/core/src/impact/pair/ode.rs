@@ -1,7 +1,7 @@
 //! The pair's ODE on the adaptive path: the state, the modes of a piece (clip, stick, slip), the
 //! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
 
-use crate::geometry::pair::PairGeometry;
+use crate::geometry::pair::{HeldSprings, PairGeometry};
 use crate::law::contact::NormalForce;
 use crate::law::pair::dot;
 use crate::model::Pair;
@@ -50,6 +50,8 @@ pub(super) enum Event {
     ClipOff,
     ToSlip,
     ToStick,
+    /// The linear law's held vertex springs switch (docs/model.md, 17.8).
+    Springs,
 }
 
 /// What one evaluation yields besides the derivative.
@@ -82,6 +84,8 @@ pub(super) struct PairOde<'a, G> {
     pub(super) inv: [f64; 3],
     /// The forward difference's time step for the slip -> stick rates.
     pub(super) fd_step: f64,
+    /// The linear law's vertex springs held through the piece (`PairGeometry::held_springs`).
+    pub(super) held: HeldSprings,
 }
 
 impl<G: PairGeometry> PairOde<'_, G> {
@@ -93,11 +97,13 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let v = [s[GX], s[GY], s[W1], s[W2]];
         let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
         let mut e = Eval::default();
-        match self.geometry.frame(&q) {
+        match self.geometry.frame_held(&q, &self.held) {
             Some(fr) => {
                 let normal = self.normal.on_pair(&fr, &v, G::CORNERS);
                 e.f_raw = normal.f_el + normal.f_d;
-                if !m.clipped {
+                // Apart, the touch is an event: a force at once (the linear law's dashpot
+                // jumps there) in the stages past it would spoil the state located there.
+                if !m.clipped && !m.apart {
                     (e.f_el, e.f_d) = (normal.f_el, normal.f_d);
                     (e.el, e.damp) = (normal.el, normal.damp);
                 }
@@ -191,17 +197,25 @@ impl<G: PairGeometry> PairOde<'_, G> {
             _ => None,
         };
         let separate = (!m.apart).then_some(Event::Separate);
-        [apart, separate, clip, tan].into_iter().flatten()
+        let springs = (!m.apart && self.geometry.holds_springs()).then_some(Event::Springs);
+        [apart, separate, clip, tan, springs].into_iter().flatten()
     }
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
     pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        if ev == Event::Springs {
+            let q = [s[X], s[Y], s[4], s[6]];
+            return self.geometry.held_springs_value(&q, &self.held);
+        }
         let e = self.eval_new(m, s).1;
         match ev {
             Event::Separate => -e.depth,
             Event::Touch => e.depth,
             Event::ClipOn => -e.f_raw,
             Event::ClipOff => e.f_raw,
+            // Where no overlap is resolved (the touch itself) the cone is closed but no spring
+            // acts either: the touch's probe has chosen the mode (`mode_after_touch`).
+            Event::ToSlip if e.depth <= 0.0 => f64::NEG_INFINITY,
             Event::ToSlip => {
                 // Past the cone by a margin of 1e-9 of it: a spring just set on the cone (at a
                 // slip -> stick switch) is not taken back by round-off.
@@ -209,6 +223,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
                 e.trial.abs() - cap - 1e-9 * (e.trial.abs() + cap)
             }
             Event::ToStick => self.to_stick_value(m, s, &e),
+            Event::Springs => unreachable!("answered above"),
         }
     }
 
@@ -250,7 +265,9 @@ impl<G: PairGeometry> PairOde<'_, G> {
     /// already pushes: at touch itself no overlap acts yet, so it is probed `dt` of the free
     /// motion in, and ten thousand times further while the bodies' overlap is still below what
     /// their frame resolves (a corner's overlap grows like the square of the time).
-    pub(super) fn mode_after_touch(&self, m: &Mode, s: &State, dt: f64) -> Tan {
+    /// The linear law's vertex springs are held from the probe on: at the touch itself the
+    /// entering corner lies on the other body's edge, and its spring must be in the piece.
+    pub(super) fn mode_after_touch(&mut self, m: &Mode, s: &State, dt: f64) -> Tan {
         let mut probe = *s;
         for k in 0..3 {
             let h = dt * 1e4f64.powi(k);
@@ -265,6 +282,9 @@ impl<G: PairGeometry> PairOde<'_, G> {
                 break;
             }
         }
+        self.held = self
+            .geometry
+            .held_springs(&[probe[X], probe[Y], probe[4], probe[6]]);
         self.initial_tan(m, &probe)
     }
 

@@ -1,0 +1,68 @@
+//! Where a piece of the pair's adaptive path ends (docs/model.md, 17.5 and 17.8): the first
+//! switch inside an accepted step, located on the step's dense output by Brent's method.
+
+use super::ode::{Event, Mode, PairOde, NS};
+use crate::geometry::pair::PairGeometry;
+use crate::integrate::dopri::DenseStep;
+use crate::numerics::roots;
+
+/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event);
+/// `chattering`: the switches that chatter (slip -> stick, clip off) are not looked for.
+pub(super) fn first_switch<G: PairGeometry>(
+    ode: &PairOde<'_, G>,
+    m: &Mode,
+    step: &DenseStep<NS, NS>,
+    chattering: bool,
+) -> Option<(f64, Event)> {
+    let g = |ev: Event, th: f64| ode.event_value(m, ev, &step.at(th));
+    let mut first: Option<(f64, Event)> = None;
+    let mut parting = None;
+    for ev in ode.candidates(m) {
+        if chattering && matches!(ev, Event::ToStick | Event::ClipOff) {
+            continue;
+        }
+        let Some((inside, th)) = switch_in(|th| g(ev, th), 1.0) else {
+            continue;
+        };
+        if ev == Event::Separate {
+            parting = Some(inside);
+        }
+        if first.is_none_or(|(best, _)| th < best) {
+            first = Some((th, ev));
+        }
+    }
+    let pulls = !m.clipped && ode.candidates(m).any(|ev| ev == Event::ClipOn);
+    let clip = parting
+        .filter(|_| pulls)
+        .and_then(|inside| clip_before_parting(|th| g(Event::ClipOn, th), inside));
+    match (first, clip) {
+        (Some((best, _)), Some(th)) if th < best => Some((th, Event::ClipOn)),
+        _ => first,
+    }
+}
+
+/// Where the damped law's pull sets in before the bodies part at `inside` (the last point of
+/// the step still in contact), `g` the clip's event function: the pull lasts up to the
+/// parting, but past it no overlap, and no force, is left, so the step's end cannot show it.
+/// Sampled towards the parting, densest there (the linear law pulls for c_n / k_n before it).
+fn clip_before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
+    let pulling = (1..=24)
+        .map(|k| inside * (1.0 - 0.5f64.powi(k)))
+        .find(|&th| g(th) > 0.0)?;
+    switch_in(g, pulling).map(|(_, th)| th)
+}
+
+/// The bracket (inside, past) of the first change of sign of `g` on [0, `end`], `g` > 0
+/// meaning the switch fired; `None` where `g(end)` has not fired.
+fn switch_in(g: impl Fn(f64) -> f64, end: f64) -> Option<(f64, f64)> {
+    let g1 = g(end);
+    if !(g1 > 0.0) {
+        return None;
+    }
+    let g0 = g(0.0);
+    Some(if g0 > 0.0 {
+        (0.0, 0.0)
+    } else {
+        roots::bracket(g, (0.0, g0), (end, g1), 1e-12)
+    })
+}
