@@ -72,13 +72,22 @@ pub(super) fn disc_spring(
     q: [f64; 2],
     sign: f64,
 ) -> Springs {
-    let (depth, u, x) = disc_penetration(c, r, poly);
-    let mut springs = Springs::default();
+    let (depth, n, x) = disc_contact(c, r, poly, sign);
     // The overlap exists (the caller's clip found it): a round-off depth is a zero one.
-    springs.add(
-        depth.max(0.0),
-        lane_direction(x, [sign * u[0], sign * u[1]], q),
-    );
+    one_spring(depth.max(0.0), x, n, q)
+}
+
+/// The disc's signed penetration, the direction of its push on the particle (`sign` as for
+/// [`disc_spring`]) and the polygon's point nearest to the centre.
+fn disc_contact(c: [f64; 2], r: f64, poly: &[[f64; 2]], sign: f64) -> (f64, [f64; 2], [f64; 2]) {
+    let (depth, u, x) = disc_penetration(c, r, poly);
+    (depth, [sign * u[0], sign * u[1]], x)
+}
+
+/// One spring of depth `depth` pushing the particle (centre `q`) along `n` at point `x`.
+fn one_spring(depth: f64, x: [f64; 2], n: [f64; 2], q: [f64; 2]) -> Springs {
+    let mut springs = Springs::default();
+    springs.add(depth, lane_direction(x, n, q));
     springs
 }
 
@@ -119,10 +128,7 @@ pub(super) fn parted_disc_patch(
     q: [f64; 2],
     sign: f64,
 ) -> ShapePatch {
-    let (depth, u, x) = disc_penetration(c, r, poly);
-    let n = [sign * u[0], sign * u[1]];
-    let mut springs = Springs::default();
-    springs.add(depth, lane_direction(x, n, q));
+    let (depth, n, x) = disc_contact(c, r, poly, sign);
     ShapePatch {
         area: 0.0,
         depth,
@@ -130,7 +136,7 @@ pub(super) fn parted_disc_patch(
         n,
         centroid: x,
         b: [0.0; 2],
-        springs,
+        springs: one_spring(depth, x, n, q),
     }
 }
 
