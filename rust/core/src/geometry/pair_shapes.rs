@@ -154,29 +154,14 @@ impl<'a> ShapePair<'a> {
     /// point).
     pub fn patch(&self, q: &[f64; 4]) -> Option<ShapePatch> {
         let at = [q[0], q[1]];
-        let springs = self.springs;
-        match (self.particle, self.partner) {
-            (PairBody::Polygon(a), PairBody::Polygon(b)) => with_placed((a, b), q, |pa, pb| {
-                polygon_pair_overlap(
-                    pa.iter().copied(),
-                    pb.iter().copied(),
-                    self.reach(),
-                    |patch, points| {
-                        let mut p = assemble(at, patch.area, patch.centroid, patch.chord?, points)?;
-                        if springs {
-                            p.springs = corner_springs(pa, pb, points, at);
-                        }
-                        Some(p)
-                    },
-                )?
+        match self.polygons() {
+            Some(ab) => with_placed(ab, q, |pa, pb| {
+                polygon_patch(pa, pb, at, self.reach(), self.springs)
             }),
-            (PairBody::Disc(r), PairBody::Polygon(b)) => {
-                self.disc_with_polygon(at, r, (b, [0.0, 0.0], q[3]), at, 1.0)
+            None => {
+                let (c, r, placed, sign) = self.disc_and_polygon(q)?;
+                self.disc_with_polygon(c, r, placed, at, sign)
             }
-            (PairBody::Polygon(a), PairBody::Disc(r)) => {
-                self.disc_with_polygon([0.0, 0.0], r, (a, at, q[2]), at, -1.0)
-            }
-            (PairBody::Disc(_), PairBody::Disc(_)) => None,
         }
     }
 
@@ -188,26 +173,34 @@ impl<'a> ShapePair<'a> {
         }
     }
 
+    /// A disc with a polygon at lanes `q`: the disc's centre and radius, the polygon with where
+    /// it is placed and how far turned, and the sign of the disc's push on the particle (as for
+    /// [`disc_spring`]); `None` for two polygons or two discs.
+    fn disc_and_polygon(&self, q: &[f64; 4]) -> Option<DiscAndPolygon<'a>> {
+        let at = [q[0], q[1]];
+        match (self.particle, self.partner) {
+            (PairBody::Disc(r), PairBody::Polygon(b)) => Some((at, r, (b, [0.0, 0.0], q[3]), 1.0)),
+            (PairBody::Polygon(a), PairBody::Disc(r)) => Some(([0.0, 0.0], r, (a, at, q[2]), -1.0)),
+            _ => None,
+        }
+    }
+
     /// The linear law's disc spring of a disc-polygon pair at lanes `q`, signed where no
     /// overlap is resolved ([`parted_disc_patch`]).
-    fn parted_disc_patch(&self, q: &[f64; 4]) -> ShapePatch {
-        let at = [q[0], q[1]];
-        let (c, r, poly, place, sign) = match (self.particle, self.partner) {
-            (PairBody::Disc(r), PairBody::Polygon(b)) => (at, r, b, ([0.0, 0.0], q[3]), 1.0),
-            (PairBody::Polygon(a), PairBody::Disc(r)) => ([0.0, 0.0], r, a, (at, q[2]), -1.0),
-            _ => unreachable!("a disc with a polygon"),
-        };
-        PLACED.with(|cell| {
+    fn parted_disc_patch(&self, q: &[f64; 4]) -> Option<ShapePatch> {
+        let (c, r, (poly, at, phi), sign) = self.disc_and_polygon(q)?;
+        Some(PLACED.with(|cell| {
             let (verts, _) = &mut *cell.borrow_mut();
-            place_into(verts, poly, place.0, place.1);
-            parted_disc_patch(c, r, verts, at, sign)
-        })
+            place_into(verts, poly, at, phi);
+            parted_disc_patch(c, r, verts, [q[0], q[1]], sign)
+        }))
     }
 
     /// The particle's and the partner's circumradii.
     fn circumradii(&self) -> [f64; 2] {
         [self.particle.circumradius(), self.partner.circumradius()]
     }
+
     /// The contact's frame from the overlap `p` at lanes `q`.
     fn frame_of(&self, p: ShapePatch, q: &[f64; 4]) -> PairFrame {
         // The contact's normal: the chord's, or under the linear law the direction of the
@@ -350,22 +343,21 @@ impl PairGeometry for ShapePair<'_> {
         let Some(ab) = self.polygons() else {
             // A disc with a polygon: its one spring is smooth (C1 where the nearest feature
             // changes) and needs no holding, only to go on where no overlap is resolved.
-            let p = self.patch(q).unwrap_or_else(|| self.parted_disc_patch(q));
+            let p = self.patch(q).or_else(|| self.parted_disc_patch(q))?;
             return Some(self.frame_of(p, q));
         };
-        let bare = ShapePair {
-            springs: false,
-            ..*self
-        };
         let at = [q[0], q[1]];
-        let springs = with_placed(ab, q, |pa, pb| springs_of_held(pa, pb, at, held));
-        let p = match bare.patch(q) {
-            Some(p) => ShapePatch { springs, ..p },
-            // Where no overlap is resolved (just after the touch, just past the parting) the
-            // held springs go on, so that the force is smooth through the piece's ends, where
-            // the switches are located on the step's dense output.
-            None => with_placed(ab, q, |pa, pb| parted_patch(pa, pb, held, springs))?,
-        };
+        // The polygons placed once for the overlap (without the unheld springs) and the held
+        // springs. Where no overlap is resolved (just after the touch, just past the parting)
+        // the held springs go on, so that the force is smooth through the piece's ends, where
+        // the switches are located on the step's dense output.
+        let p = with_placed(ab, q, |pa, pb| {
+            let springs = springs_of_held(pa, pb, at, held);
+            match polygon_patch(pa, pb, at, self.reach(), false) {
+                Some(p) => Some(ShapePatch { springs, ..p }),
+                None => parted_patch(pa, pb, held, springs),
+            }
+        })?;
         Some(self.frame_of(p, q))
     }
 
@@ -476,6 +468,34 @@ fn disc_over_top(r: f64, b: &[[f64; 2]]) -> f64 {
     }
     best
 }
+
+/// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
+/// partner), parry's intersection within `reach`, with the linear law's corner springs when
+/// `springs`.
+fn polygon_patch(
+    pa: &[[f64; 2]],
+    pb: &[[f64; 2]],
+    at: [f64; 2],
+    reach: f64,
+    springs: bool,
+) -> Option<ShapePatch> {
+    polygon_pair_overlap(
+        pa.iter().copied(),
+        pb.iter().copied(),
+        reach,
+        |patch, points| {
+            let mut p = assemble(at, patch.area, patch.centroid, patch.chord?, points)?;
+            if springs {
+                p.springs = corner_springs(pa, pb, points, at);
+            }
+            Some(p)
+        },
+    )?
+}
+
+/// A disc with a polygon ([`ShapePair::disc_and_polygon`]): the disc's centre and radius, the
+/// polygon with where it is placed and how far turned, the sign of the disc's push.
+type DiscAndPolygon<'a> = ([f64; 2], f64, (&'a Polygon, [f64; 2], f64), f64);
 
 /// The patch from the overlap's area, centroid, chord and vertices, the particle's centre at
 /// `q` (no springs).

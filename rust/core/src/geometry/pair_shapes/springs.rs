@@ -150,27 +150,41 @@ pub(super) fn held_corner_springs(
     q: [f64; 2],
     reach: [f64; 2],
 ) -> HeldSprings {
-    let mut held = HeldSprings::default();
-    for (partner_corner, corners, poly) in [(false, a, b), (true, b, a)] {
-        let (centre, r) = if partner_corner {
-            (q, reach[0])
-        } else {
-            ([0.0, 0.0], reach[1])
-        };
-        for (i, &x) in corners.iter().enumerate() {
-            if within(x, centre, r) {
-                let (depth, _, edge) = least_penetration(x, poly);
-                if depth > 0.0 {
-                    held.springs.push(SpringRef {
-                        partner_corner,
-                        corner: i as u32,
-                        edge: edge as u32,
-                    });
-                }
-            }
-        }
-    }
-    held
+    let springs = corners_in_reach(a, b, q, reach)
+        .filter_map(|(partner_corner, i, x, poly)| {
+            let (depth, _, edge) = least_penetration(x, poly);
+            (depth > 0.0).then_some(SpringRef {
+                partner_corner,
+                corner: i as u32,
+                edge: edge as u32,
+            })
+        })
+        .collect();
+    HeldSprings { springs }
+}
+
+/// Each corner of either body within the other's circumradius (`reach`: the particle's and
+/// the partner's; the particle's centre at `q`, the partner's at the origin): whether it is
+/// the partner's, its index, where it is, and the body it may press into. Corners beyond
+/// cannot be inside the other body.
+fn corners_in_reach<'p>(
+    a: &'p [[f64; 2]],
+    b: &'p [[f64; 2]],
+    q: [f64; 2],
+    reach: [f64; 2],
+) -> impl Iterator<Item = (bool, usize, [f64; 2], &'p [[f64; 2]])> + 'p {
+    [
+        (false, a, b, [0.0, 0.0], reach[1]),
+        (true, b, a, q, reach[0]),
+    ]
+    .into_iter()
+    .flat_map(move |(partner_corner, corners, poly, centre, r)| {
+        corners
+            .iter()
+            .enumerate()
+            .filter(move |&(_, &x)| within(x, centre, r))
+            .map(move |(i, &x)| (partner_corner, i, x, poly))
+    })
 }
 
 /// Whether `x` lies within distance `r` of `centre`.
@@ -234,18 +248,10 @@ pub(super) fn held_springs_value(
             }
         }
     }
-    for (partner_corner, corners, poly) in [(false, a, b), (true, b, a)] {
-        let (centre, r) = if partner_corner {
-            (q, reach[0])
-        } else {
-            ([0.0, 0.0], reach[1])
-        };
-        for (i, &x) in corners.iter().enumerate() {
-            let is_held =
-                |s: &SpringRef| s.partner_corner == partner_corner && s.corner as usize == i;
-            if within(x, centre, r) && !held.springs.iter().any(is_held) {
-                value = value.max(least_penetration(x, poly).0);
-            }
+    for (partner_corner, i, x, poly) in corners_in_reach(a, b, q, reach) {
+        let is_held = |s: &SpringRef| s.partner_corner == partner_corner && s.corner as usize == i;
+        if !held.springs.iter().any(is_held) {
+            value = value.max(least_penetration(x, poly).0);
         }
     }
     value

@@ -31,9 +31,9 @@ pub(super) fn first_switch<G: PairGeometry>(
             first = Some((th, ev));
         }
     }
-    let pulls = !m.clipped && ode.candidates(m).any(|ev| ev == Event::ClipOn);
+    // In contact and unclipped, the clip switching on is a candidate (`PairOde::candidates`).
     let clip = parting
-        .filter(|_| pulls)
+        .filter(|_| !m.clipped)
         .and_then(|inside| clip_before_parting(|th| g(Event::ClipOn, th), inside));
     match (first, clip) {
         (Some((best, _)), Some(th)) if th < best => Some((th, Event::ClipOn)),
