@@ -80,7 +80,10 @@ proptest! {
             .iter()
             .map(|v| s * v.x + c * v.y)
             .fold(f64::INFINITY, f64::min);
-        prop_assert_eq!(shape.touch_height(phi), -scan);
+        // To rounding: the engine turns corners by its own sine and cosine, within about an
+        // ulp of the library's; a wrong vertex would sit a whole edge's slope away.
+        let tol = 8.0 * f64::EPSILON * 0.01;
+        prop_assert!((shape.touch_height(phi) + scan).abs() <= tol, "{} vs {}", shape.touch_height(phi), -scan);
     }
 
     #[test]

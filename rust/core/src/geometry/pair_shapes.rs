@@ -15,6 +15,7 @@
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::parry::polygon_pair_overlap;
 use super::{Polygon, Shape};
+use crate::numerics::trig::sin_cos;
 use disc_polygon::disc_polygon;
 use springs::{
     corner_springs, disc_spring, held_corner_springs, held_springs_value, parted_disc_patch,
@@ -92,7 +93,7 @@ fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// The vertices of `p` turned by `phi` and placed with the centroid at `at`.
 fn placed(p: &Polygon, at: [f64; 2], phi: f64) -> impl Iterator<Item = [f64; 2]> + '_ {
-    let (s, c) = phi.sin_cos();
+    let (s, c) = sin_cos(phi);
     p.vertices()
         .iter()
         .map(move |v| [at[0] + c * v.x - s * v.y, at[1] + s * v.x + c * v.y])

@@ -22,6 +22,7 @@
 
 use crate::error::Result;
 use crate::geometry::{validate_convex, Overlap, Polygon};
+use crate::numerics::trig::sin_cos;
 use parry2d_f64::math::Vector2 as V;
 use parry2d_f64::transformation::{
     convex_polygons_intersection_with_tolerances, PolygonIntersectionTolerances,
@@ -106,7 +107,7 @@ impl ConvexObstacle {
     /// `None` when they do not overlap.
     pub fn overlap(&self, particle: &Polygon, x: f64, y: f64, phi: f64) -> Option<Patch> {
         let scale = pow2_scale(particle.circumradius());
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos(phi);
         SCRATCH.with(|cell| {
             let mut buf = cell.borrow_mut();
             let Scratch {
@@ -146,7 +147,7 @@ impl ConvexObstacle {
 /// the centre of mass, plate at y = 0), so that both paths see the same vertex coordinates.
 pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
     let scale = pow2_scale(particle.circumradius());
-    let (s, c) = phi.sin_cos();
+    let (s, c) = sin_cos(phi);
     SCRATCH.with(|cell| {
         let mut buf = cell.borrow_mut();
         let Scratch {

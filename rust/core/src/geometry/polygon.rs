@@ -5,6 +5,7 @@
 use super::chain::ChainSums;
 use super::overlap::{Corners, Overlap};
 use crate::error::{ensure_param, positive, Result};
+use crate::numerics::trig::sin_cos;
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 
@@ -189,7 +190,7 @@ impl Polygon {
     /// precision. Vertices exactly on the plate count as inside; crossing points are placed
     /// exactly on y = 0.
     pub fn clip_below_plate(&self, y: f64, phi: f64) -> Option<Overlap> {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos(phi);
         let world = |v: &Vector2<f64>| (c * v.x - s * v.y, y + s * v.x + c * v.y);
         let n = self.vertices.len();
         let k = self.lowest_vertex(s, c);
@@ -279,7 +280,7 @@ impl Polygon {
     /// World height of vertex `k` for the centroid at height `y` and orientation `phi`.
     #[inline]
     pub fn vertex_height(&self, k: usize, y: f64, phi: f64) -> f64 {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos(phi);
         let v = &self.vertices[k];
         y + s * v.x + c * v.y
     }

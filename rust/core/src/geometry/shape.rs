@@ -11,6 +11,7 @@ use super::disc::disc_segment;
 use super::overlap::{Corners, Overlap};
 pub use super::polygon::Polygon;
 use crate::error::{ensure_param, positive, Result};
+use crate::numerics::trig::sin_cos;
 use nalgebra::Vector2;
 use std::f64::consts::PI;
 use std::sync::Arc;
@@ -217,7 +218,7 @@ impl Shape {
         match self {
             Shape::Disc { r } | Shape::Sphere { r } => *r,
             Shape::Polygon(p) => {
-                let (s, c) = phi.sin_cos();
+                let (s, c) = sin_cos(phi);
                 let v = &p.vertices[p.lowest_vertex(s, c)];
                 -(s * v.x + c * v.y)
             }

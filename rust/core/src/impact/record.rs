@@ -8,6 +8,7 @@ use crate::law::pair::{Lanes, PairForces};
 use crate::law::{Dof, Forces};
 use crate::model::{Initial, Model, NormalLaw};
 use crate::numerics::roots;
+use crate::numerics::trig::sin_cos;
 
 /// A contact that has not ended after this many estimated contact times is stopped
 /// ([`StopReason::ContactTimeBudget`]).
@@ -318,7 +319,7 @@ fn normal_potential(model: &Model, depth: f64, phi: f64) -> (f64, f64) {
                 return (0.5 * kn * depth * depth, kn * depth);
             }
             let y = shape.touch_height(phi) - depth;
-            let (s, c) = phi.sin_cos();
+            let (s, c) = sin_cos(phi);
             corners
                 .iter()
                 .map(|p| (-(y + s * p.x + c * p.y)).max(0.0))

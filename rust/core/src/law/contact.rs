@@ -5,6 +5,7 @@ use crate::geometry::pair::PairFrame;
 use crate::geometry::{disc_segment, parry, sphere_contact, Overlap, OverlapMethod, Shape};
 use crate::law::tangential::{StickState, TangentialSpring};
 use crate::model::{Hertz, Model, NormalLaw};
+use crate::numerics::trig::sin_cos;
 
 /// Position (x, y, phi) or velocity (vx, vy, omega) of the particle.
 pub type Dof = [f64; 3];
@@ -385,7 +386,7 @@ impl PlateGeometry for ShapePlate<'_> {
     }
 
     fn corner_x(&self, k: usize, phi: f64) -> f64 {
-        let (s, c) = phi.sin_cos();
+        let (s, c) = sin_cos(phi);
         let v = &self.shape.vertices()[k];
         c * v.x - s * v.y
     }

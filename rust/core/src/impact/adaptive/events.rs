@@ -8,6 +8,7 @@ use super::{State, OM, PHI, VX, VY, Y};
 use crate::geometry::{disc_arm_per_depth, Shape};
 use crate::model::NormalLaw;
 use crate::numerics::roots::bracket;
+use crate::numerics::trig::sin_cos;
 
 /// Margin of the slip -> stick event function, relative to the sum of its terms' magnitudes
 /// (see `Reference::slip_to_stick`).
@@ -83,7 +84,7 @@ impl Reference<'_> {
         let eval = || known.map_or_else(|| self.eval(m, s), |(d, e)| (*d, *e));
         let (y, phi) = (s[Y], s[PHI]);
         let n = self.verts.len().max(1);
-        let poly = |k: usize| self.corner(k, y, phi.sin_cos()).1;
+        let poly = |k: usize| self.corner(k, y, sin_cos(phi)).1;
         match (ev, m.touch) {
             (Event::Touch, _) => self.model.scene.shape.touch_height(phi) - y,
             (Event::Separate, _) => y - self.model.r,
@@ -233,7 +234,7 @@ impl Reference<'_> {
         let o = e.forces.overlap?;
         let (v, a) = ([s[VX], s[VY], s[OM]], [d[VX], d[VY], d[OM]]);
         let (y, om, n) = (s[Y], s[OM], self.verts.len());
-        let sc = s[PHI].sin_cos();
+        let sc = sin_cos(s[PHI]);
         let corner = |k: usize| self.corner(k, y, sc);
         let slide = |x: f64, p: (f64, f64), q: (f64, f64)| {
             om * y - (v[1] + om * x) * (q.0 - p.0) / (q.1 - p.1)

@@ -8,6 +8,7 @@ use crate::geometry::disc_segment_at;
 use crate::geometry::{Overlap, Polygon, Shape};
 use crate::law::{carrying, trial_force, vertex_springs, Forces, NormalForce, StickState};
 use crate::model::{Model, NormalLaw};
+use crate::numerics::trig::sin_cos;
 use nalgebra::Vector2;
 
 /// Everything the force evaluation yields besides the derivative.
@@ -84,7 +85,7 @@ impl<'a> Reference<'a> {
         y: f64,
         phi: f64,
     ) -> Overlap {
-        let sc = phi.sin_cos();
+        let sc = sin_cos(phi);
         if let Some(poly) = self.summed.filter(|_| len >= LONG_RUN) {
             let low = poly.lowest_vertex_near(low, sc.0, sc.1);
             return poly.chain.overlap(self.verts, (first, len, low), y, sc);
@@ -209,7 +210,7 @@ impl<'a> Reference<'a> {
         let (f_el, f_d, x_el, x_damp) = match (self.linear(), m.touch) {
             // One spring-dashpot per held corner, continued smoothly beyond a crossing.
             (Some((kn, cn)), Touch::Poly { first, len, .. }) => {
-                let sc = s[PHI].sin_cos();
+                let sc = sin_cos(s[PHI]);
                 let held = (first..first + len).map(|k| {
                     let (x, h) = self.corner(k, s[Y], sc);
                     (-h, x)

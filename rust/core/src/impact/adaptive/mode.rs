@@ -7,6 +7,7 @@ use super::piece::{Event, Mode, Tally, Tan, Touch};
 use super::{State, PHI, XI, Y};
 use crate::geometry::Shape;
 use crate::law::carrying;
+use crate::numerics::trig::sin_cos;
 
 impl Reference<'_> {
     /// The overlap formula a contact starts with at centre height `y`, orientation `phi`.
@@ -21,7 +22,7 @@ impl Reference<'_> {
     /// neighbours that are not above the plate.
     pub(super) fn initial_run(&self, y: f64, phi: f64) -> Touch {
         let n = self.verts.len();
-        let sc = phi.sin_cos();
+        let sc = sin_cos(phi);
         let yk = |k: usize| self.corner(k, y, sc).1;
         let low = (0..n).min_by(|&i, &j| yk(i).total_cmp(&yk(j))).unwrap_or(0);
         let (mut first, mut len) = (low, 1);
