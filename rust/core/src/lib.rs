@@ -24,6 +24,8 @@
 // (the contact forces), `integrate` (the steppers: how time advances), `impact` (the loops of
 // one impact to a record), `sweep` (many impacts).
 pub mod cancel;
+#[cfg(feature = "bench-counters")]
+pub mod counters;
 pub mod error;
 pub mod geometry;
 pub mod impact;

@@ -348,6 +348,8 @@ impl<'a, 't> Run<'a, 't> {
                 // switches, and the budget bounds its time (uncounted, a 4096-gon's rattle ran
                 // 0.85 s to the budget instead of 0.66).
                 self.attempts += 1;
+                #[cfg(feature = "bench-counters")]
+                crate::counters::count_located_switch(th);
                 match self.ode.state_at_switch(&self.mode, step, th) {
                     Some((s_th, err)) => (s_th, th * h, Some(ev), err, None),
                     None => {
