@@ -244,8 +244,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         true
     }
 
-    /// The state where a piece ends inside `step`, at fraction `th`, and its local error: the
-    /// plate's rule (section 7.3): from the dense output where it agrees with the cubic
+    /// The state where a piece ends inside `step`, at fraction `th`, and its local error
+    /// (section 7.3, with the unscaled gap): from the dense output where it agrees with the cubic
     /// Hermite interpolant of the step's ends to the local tolerance (their gap, which
     /// overstates the dense output's error, joins `err_est`), else from the step redone up
     /// to there. Taken from the dense output always, its error at the switches of the linear
