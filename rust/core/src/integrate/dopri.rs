@@ -151,23 +151,7 @@ impl<const N: usize, const M: usize> DenseStep<N, M> {
     /// interpolant of the step's ends and their derivatives (one order lower): an estimate of
     /// the interpolant's own error that overstates it.
     pub fn at_with_gap(&self, theta: f64) -> ([f64; N], [f64; N]) {
-        let eta = 1.0 - theta;
-        let (h00, h10) = ((1.0 + 2.0 * theta) * eta * eta, theta * eta * eta);
-        let (h01, h11) = (theta * theta * (3.0 - 2.0 * theta), -theta * theta * eta);
-        let (mut s, mut gap) = ([0.0; N], [0.0; N]);
-        for i in 0..N {
-            s[i] = if i < M {
-                self.component_at(theta, i)
-            } else {
-                self.interpolate(theta, i, self.coefficients(i))
-            };
-            let hermite = h00 * self.y0[i]
-                + h10 * self.h * self.k[0][i]
-                + h01 * self.y1[i]
-                + h11 * self.h * self.k[6][i];
-            gap[i] = (s[i] - hermite).abs();
-        }
-        (s, gap)
+        self.at_with_scaled_gap(theta, |_, _| 1.0)
     }
 
     /// [`Self::at_with_gap`], the gap scaled to an estimate of the next, omitted term: the
@@ -177,13 +161,39 @@ impl<const N: usize, const M: usize> DenseStep<N, M> {
     /// singularity of the force the ratio nears 1 and the estimate is the gap (the ratio
     /// capped at 1, also where r4 vanishes by chance).
     pub fn at_with_estimate(&self, theta: f64) -> ([f64; N], [f64; N]) {
-        let (s, mut gap) = self.at_with_gap(theta);
-        for (i, g) in gap.iter_mut().enumerate() {
-            let [_, _, r4, r5] = self.coefficients(i);
+        self.at_with_scaled_gap(theta, |r4, r5| {
             let ratio = (r5 / r4).abs();
             if ratio < 1.0 {
-                *g *= ratio;
+                ratio
+            } else {
+                1.0
             }
+        })
+    }
+
+    /// The state at `theta` and each component's gap to the cubic Hermite interpolant, times
+    /// `scale(r4, r5)` of its dense-output coefficients (formed once per component).
+    fn at_with_scaled_gap(
+        &self,
+        theta: f64,
+        scale: impl Fn(f64, f64) -> f64,
+    ) -> ([f64; N], [f64; N]) {
+        let eta = 1.0 - theta;
+        let (h00, h10) = ((1.0 + 2.0 * theta) * eta * eta, theta * eta * eta);
+        let (h01, h11) = (theta * theta * (3.0 - 2.0 * theta), -theta * theta * eta);
+        let (mut s, mut gap) = ([0.0; N], [0.0; N]);
+        for i in 0..N {
+            let c = if i < M {
+                self.dense_coefficients()[i]
+            } else {
+                self.coefficients(i)
+            };
+            s[i] = self.interpolate(theta, i, c);
+            let hermite = h00 * self.y0[i]
+                + h10 * self.h * self.k[0][i]
+                + h01 * self.y1[i]
+                + h11 * self.h * self.k[6][i];
+            gap[i] = (s[i] - hermite).abs() * scale(c[2], c[3]);
         }
         (s, gap)
     }
@@ -202,10 +212,14 @@ impl<const N: usize, const M: usize> DenseStep<N, M> {
     /// (a disc's deepest point follows v_y only) need not form the whole state.
     #[inline]
     pub fn component_at(&self, theta: f64, i: usize) -> f64 {
-        let dense = self
-            .dense
-            .get_or_init(|| std::array::from_fn(|i| self.coefficients(i)));
-        self.interpolate(theta, i, dense[i])
+        self.interpolate(theta, i, self.dense_coefficients()[i])
+    }
+
+    /// The dense output's coefficients of the first `M` components, formed on first use.
+    #[inline]
+    fn dense_coefficients(&self) -> &[[f64; 4]; M] {
+        self.dense
+            .get_or_init(|| std::array::from_fn(|i| self.coefficients(i)))
     }
 
     /// The dense output's coefficients r2 ... r5 of component `i`.
@@ -257,6 +271,12 @@ pub fn root_error_ratio(p: f64, rho: f64, at_end: bool) -> f64 {
 mod tests {
     use super::*;
 
+    /// Asserts that an error's ratio between steps h and h/2 lies in `range` (2^p for order p
+    /// lies inside it), naming the order it shows where it does not.
+    fn assert_halving_ratio(what: &str, ratio: f64, (lo, hi): (f64, f64)) {
+        assert!(ratio > lo && ratio < hi, "{what}: order {}", ratio.log2());
+    }
+
     /// One step of y' = -y from y = 1: the step's local error falls like h^6 (5th order), the
     /// embedded estimate like h^5, and the dense output at mid-step like h^5 (4th order), each
     /// against exp(-t); the estimate is of the size of the 4th-order error it measures.
@@ -271,21 +291,9 @@ mod tests {
         };
         let (l1, e1, d1) = errors(0.2);
         let (l2, e2, d2) = errors(0.1);
-        assert!(
-            l1 / l2 > 45.0 && l1 / l2 < 90.0,
-            "local order: {}",
-            (l1 / l2).log2()
-        );
-        assert!(
-            e1 / e2 > 24.0 && e1 / e2 < 40.0,
-            "estimate order: {}",
-            (e1 / e2).log2()
-        );
-        assert!(
-            d1 / d2 > 24.0 && d1 / d2 < 40.0,
-            "dense order: {}",
-            (d1 / d2).log2()
-        );
+        assert_halving_ratio("local error", l1 / l2, (45.0, 90.0));
+        assert_halving_ratio("estimate", e1 / e2, (24.0, 40.0));
+        assert_halving_ratio("dense output", d1 / d2, (24.0, 40.0));
         assert!(
             e1 >= l1,
             "the estimate {e1} bounds the 5th-order error {l1}"
@@ -327,16 +335,8 @@ mod tests {
         }
         let (_, e1, g1, _) = smooth(0.2, 0.5);
         let (_, e2, g2, _) = smooth(0.1, 0.5);
-        assert!(
-            e1 / e2 > 24.0 && e1 / e2 < 40.0,
-            "estimate order {}",
-            (e1 / e2).log2()
-        );
-        assert!(
-            g1 / g2 > 12.0 && g1 / g2 < 20.0,
-            "gap order {}",
-            (g1 / g2).log2()
-        );
+        assert_halving_ratio("estimate", e1 / e2, (24.0, 40.0));
+        assert_halving_ratio("gap", g1 / g2, (12.0, 20.0));
         // y' = sqrt(t), y = (2/3) t^(3/2), t the first component's clock.
         let mut step = DenseStep::<2, 2>::default();
         step.take(&[0.0, 0.0], &[1.0, 0.0], 1.0, |_, y, k| {
