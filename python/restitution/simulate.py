@@ -52,7 +52,8 @@ class Record:
     energy_in: float
     energy_out: float
     work_normal: float
-    """Work of the normal force on the body (<= 0)."""
+    """Work of the normal force on the body, elastic and damping parts (<= 0 where the law has a
+    potential)."""
     work_friction: float
     """Work of the tangential force on the body (<= 0)."""
     energy_residual: float
@@ -87,6 +88,10 @@ class Record:
     angular_momentum_residual: float | None
     """(angular momentum about the pair's centre of mass after - before) / (m* v (r1 + r2)); None
     for the plate."""
+    work_damping: float
+    """The part of ``work_normal`` done by the normal dashpot (<= 0); ``work_normal - work_damping``
+    is the elastic force's: <= 0 where the law has a potential, of either sign for the area law
+    between bodies with corners (docs/model.md 7.7)."""
     trace: pl.DataFrame | None = None
     """Per-step history when ``simulate(..., trace=True)``: t, x, y, phi, vx, vy, omega, f_n, f_t,
     area, depth, xi, partner_phi, partner_omega, stick (0 none, 1 stick, 2 slip). For a pair x, y,

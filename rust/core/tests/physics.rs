@@ -313,6 +313,40 @@ fn linear_law_unclipped_formula_is_a_lower_bound_and_the_limit() {
     }
 }
 
+/// The linear law's loss split between its dashpot and its spring: the clip (see `e_clipped`)
+/// switches the force off at depth delta_c = (c_n / k_n) |delta'| = (2 zeta / w) v e_N, so the
+/// spring keeps 1/2 k_n delta_c^2 = 4 zeta^2 e_N^2 E_in, which the elastic force's work,
+/// `work_normal - work_damping`, loses; the dashpot's work is the rest of the loss,
+/// (e_N^2 - 1 + 4 zeta^2 e_N^2) E_in. The reference and the adaptive path locate the clip (to
+/// their tolerance); the fixed steps step over it (first order, like e_N).
+#[test]
+fn linear_law_loss_splits_between_the_dashpot_and_the_clipped_spring() {
+    for zeta in [0.1, 0.3, 0.5, 0.7] {
+        let e = e_clipped(zeta);
+        let elastic = -4.0 * zeta * zeta * e * e;
+        let damping = e * e - 1.0 + 4.0 * zeta * zeta * e * e;
+        for (integrator, tol, allowed) in [
+            (Integrator::Reference, 1e-12, 1e-9),
+            (Integrator::Adaptive, 1e-6, 1e-5),
+        ] {
+            let scene = Scene {
+                mu: 0.0,
+                normal_law: linear_law(1e7, zeta),
+                integrator,
+                tol,
+                ..Scene::default()
+            };
+            let rec = run(&scene, &at(90.0, 0.0));
+            let w_d = rec.work_damping / rec.energy_in;
+            let w_el = rec.work_normal / rec.energy_in - w_d;
+            assert!(
+                (w_el - elastic).abs() < allowed && (w_d - damping).abs() < allowed,
+                "zeta {zeta}, {integrator:?}: elastic {w_el} vs {elastic}, dashpot {w_d} vs {damping}"
+            );
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Convergence with dt, and Gear-5/Verlet agreement.
 

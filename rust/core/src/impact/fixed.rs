@@ -6,6 +6,7 @@
 use super::budget::step_budget;
 use super::flight;
 use super::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use super::work::Works;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::Shape;
@@ -95,73 +96,6 @@ struct Limits {
     depth_scale: f64,
 }
 
-/// The work of a force along the steps, from its power at the end of each step: each step's
-/// share is the integral of the parabola through the last three powers (third order, for
-/// unequal steps too), the first step of a smooth stretch (from touch or from an event, where
-/// the power may jump) the trapezoid's.
-#[derive(Debug, Clone, Copy)]
-struct Work {
-    total: f64,
-    /// Power at the end of the last step and of the one before.
-    p: f64,
-    p_prev: f64,
-    /// Length of the last step; 0 at the start of a stretch.
-    h: f64,
-    /// One step into the stretch (its first share is still the trapezoid's).
-    second: bool,
-}
-
-impl Work {
-    fn starting_at(p: f64) -> Self {
-        Work {
-            total: 0.0,
-            p,
-            p_prev: 0.0,
-            h: 0.0,
-            second: false,
-        }
-    }
-
-    /// A new smooth stretch from power `p`, keeping the work so far.
-    fn restart(self, p: f64) -> Self {
-        Work {
-            total: self.total,
-            ..Work::starting_at(p)
-        }
-    }
-
-    /// The trapezoid's share, as for the exact disc (see `integrate_on`).
-    #[inline(always)]
-    fn push_trapezoid(&mut self, h: f64, p: f64) {
-        self.total += 0.5 * h * (self.p + p);
-        self.p = p;
-    }
-
-    #[inline(always)]
-    fn push(&mut self, h: f64, p: f64) {
-        let h1 = self.h;
-        if self.second && h == h1 {
-            // The stretch's first step was a trapezoid: now that a third power is known, its
-            // share becomes the parabola's, h (5 p0 + 8 p1 - p2) / 12.
-            self.total += h * (2.0 * self.p - self.p_prev - p) * (1.0 / 12.0);
-        }
-        self.second = h1 == 0.0;
-        self.total += if h == h1 {
-            h * (5.0 * p + 8.0 * self.p - self.p_prev) * (1.0 / 12.0)
-        } else if h1 > 0.0 && h <= 4.0 * h1 {
-            // Unequal steps (events, refined steps); far longer than the last one (after a
-            // tiny cut) the parabola would amplify round-off, and the trapezoid is used.
-            let s = h1 + h;
-            h / 6.0
-                * (p * (2.0 * h + 3.0 * h1) / s + self.p * (h + 3.0 * h1) / h1
-                    - self.p_prev * h * h / (h1 * s))
-        } else {
-            0.5 * h * (self.p + p)
-        };
-        (self.p_prev, self.p, self.h) = (self.p, p, h);
-    }
-}
-
 /// Integrates one impact with `stepper`, the loop compiled separately for the exact disc and
 /// for other shapes (see [`PlateGeometry`]).
 fn integrate<S: Stepper>(
@@ -202,10 +136,9 @@ struct FixedLoop<'a, S, G> {
     /// default step), so those keep the plain steps.
     events: bool,
     control: Option<events::EventControl>,
-    /// Works of the normal and tangential forces: quadratures of their powers along the steps.
-    w_n: Work,
-    w_t: Work,
-    was_pushing: bool,
+    /// Works of the normal and tangential forces: quadratures of their powers along the steps
+    /// (of third order where events are located and the stepper is Gear-5).
+    works: Works,
     /// Time taken beyond `steps * dt` (shortened and refined steps, flights jumped over).
     t_extra: f64,
     steps: u64,
@@ -226,9 +159,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
             inv_mass: [1.0 / model.mass, 1.0 / model.mass, 1.0 / model.inertia],
             events,
             control: None,
-            w_n: Work::starting_at(0.0),
-            w_t: Work::starting_at(0.0),
-            was_pushing: false,
+            works: Works::new(events && S::HIGH_ORDER),
             t_extra: 0.0,
             steps: 0,
             in_contact: true,
@@ -305,8 +236,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
             tolerance: tolerance(self.limits.depth_scale, self.model.r),
             every_crossing: Self::linear(self.model),
         });
-        let (p_el, p_d, p_t) = b.powers;
-        (self.w_n, self.w_t) = (Work::starting_at(p_el + p_d), Work::starting_at(p_t));
+        self.works.restart(b.powers);
     }
 
     /// The budget this impact has used up, if any: its steps, or its contact time.
@@ -349,8 +279,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
             self.t_extra += h - dt;
             if let Some(b) = restarted {
                 // A new smooth stretch of the powers starts (they may jump at the event).
-                let (p_el, p_d, p_t) = b.powers;
-                (self.w_n, self.w_t) = (self.w_n.restart(p_el + p_d), self.w_t.restart(p_t));
+                self.works.restart(b.powers);
             }
         }
         let t = self.time();
@@ -376,25 +305,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
     /// Adds the step's share of the works.
     #[inline(always)]
     fn add_work(&mut self, f: &Forces, h: f64, q: &Dof, v: &Dof) {
-        let (p_el, p_d, p_t) = f.powers(q[1], v);
-        if self.events && S::HIGH_ORDER {
-            // The normal power kinks where the force is clipped to zero or released: a
-            // parabola through both sides would be worse than the trapezoid, so a new stretch
-            // starts there.
-            let pushing = f.f_el + f.f_d > 0.0;
-            if pushing == self.was_pushing {
-                self.w_n.push(h, p_el + p_d);
-                self.w_t.push(h, p_t);
-            } else {
-                self.w_n.push_trapezoid(h, p_el + p_d);
-                self.w_t.push_trapezoid(h, p_t);
-                (self.w_n, self.w_t) = (self.w_n.restart(p_el + p_d), self.w_t.restart(p_t));
-            }
-            self.was_pushing = pushing;
-        } else {
-            self.w_n.push_trapezoid(h, p_el + p_d);
-            self.w_t.push_trapezoid(h, p_t);
-        }
+        self.works.add(h, f.powers(q[1], v), f.f_el + f.f_d > 0.0);
     }
 
     /// Contact starts and ends between steps: crossings interpolated linearly.
@@ -433,8 +344,7 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         if let Some(c) = self.control.as_mut() {
             (c.h, c.corners) = (dt, None);
         }
-        (self.w_n, self.w_t) = (self.w_n.restart(0.0), self.w_t.restart(0.0));
-        self.was_pushing = false;
+        self.works.part();
         self.prev_depth = depth;
         if let Some(tr) = trace {
             let (t, xi) = (self.time(), self.contact.spring.xi);
@@ -456,8 +366,9 @@ impl<'a, S: Stepper, G: PlateGeometry> FixedLoop<'a, S, G> {
         // its potential: in the clipped tail the force is switched off while the potential is
         // not yet zero, and that stored energy is lost to the clip (a real part of the normal
         // work).
-        rec.work_normal = self.w_n.total;
-        rec.work_friction = self.w_t.total;
+        rec.work_normal = self.works.normal.total;
+        rec.work_friction = self.works.tangential.total;
+        rec.work_damping = self.works.damping.total;
         rec.close(model, init, &v);
         rec
     }

@@ -95,10 +95,16 @@ pub struct Record {
     pub energy_in: f64,
     /// Kinetic energy after the impact (J/m).
     pub energy_out: f64,
-    /// Work of the normal force on the body (J/m, <= 0 up to integration error).
+    /// Work of the normal force on the body, elastic and damping parts (J/m, <= 0 up to
+    /// integration error where the law has a potential; see `work_damping`).
     pub work_normal: f64,
     /// Work of the tangential force on the body (J/m, <= 0 up to integration error).
     pub work_friction: f64,
+    /// The part of `work_normal` done by the normal force's dashpot (J/m, <= 0 up to
+    /// integration error); the rest, `work_normal - work_damping`, is the elastic force's: <= 0
+    /// for a law with a potential (the clip drops the energy stored when it switches the force
+    /// off), of either sign for the area law between bodies with corners (docs/model.md 17.8).
+    pub work_damping: f64,
     /// (energy_out - energy_in - work_normal - work_friction) / energy_in.
     pub energy_residual: f64,
     /// The particle left the plate and cleared it.
@@ -217,7 +223,7 @@ record_columns! {
     timed_out: Bool, step_budget: Int, stop: Name => StopReason::name,
     err_est: Opt, e_n_sep: F64, normal_rotation_deg: F64, partner_omega_out: F64,
     partner_vx_out: F64, partner_vy_out: F64, momentum_residual: Opt,
-    angular_momentum_residual: Opt,
+    angular_momentum_residual: Opt, work_damping: F64,
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).

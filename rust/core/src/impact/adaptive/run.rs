@@ -517,6 +517,7 @@ impl<'a, 't> Run<'a, 't> {
             slip_events: tally.slip_events,
             energy_in: self.lim.energy_in,
             work_normal: s[W_EL] + s[W_D],
+            work_damping: s[W_D],
             work_friction: s[W_T],
             step_budget: self.lim.max_steps,
             stop,

@@ -13,7 +13,7 @@
 //! taken along the motion by a forward difference).
 
 use super::flight::{self, Flight};
-use super::ode::{Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WN, WT, X, XI, Y};
+use super::ode::{Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
 use super::record::{close_pair, separation_normal};
 use super::switches::first_switch;
 use super::Start;
@@ -146,6 +146,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             init.omega,
             init.partner_phi0,
             init.partner_omega,
+            0.0,
             0.0,
             0.0,
             0.0,
@@ -305,10 +306,11 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     }
 
     /// The largest component of the absolute errors `err` in units of the local tolerance
-    /// (the spring's elongation only while it sticks: elsewhere it is algebraic).
+    /// (the spring's elongation only while it sticks: elsewhere it is algebraic; the dashpot's
+    /// work is a part of the normal force's, which is controlled, and reported only).
     fn scaled_norm(&self, err: &State) -> f64 {
         (0..NS)
-            .filter(|&i| i != XI || self.mode.tan == Tan::Stick)
+            .filter(|&i| (i != XI || self.mode.tan == Tan::Stick) && i != WD)
             .map(|i| err[i].abs() * self.weight[i])
             .fold(0.0, f64::max)
     }
@@ -503,6 +505,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         }
         rec.work_normal = s[WN];
         rec.work_friction = s[WT];
+        rec.work_damping = s[WD];
         let (q, v) = ([s[X], s[Y], s[4], s[6]], [s[GX], s[GY], s[W1], s[W2]]);
         let n_sep = if G::CORNERS {
             self.n_sep
@@ -579,6 +582,7 @@ fn error_scales(
         spin / r2 * t_c,
         spin / r2,
         xi,
+        energy,
         energy,
         energy,
     ]

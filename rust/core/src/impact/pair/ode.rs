@@ -7,8 +7,8 @@ use crate::law::pair::dot;
 use crate::model::Pair;
 
 /// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
-/// tangential force.
-pub(super) const NS: usize = 11;
+/// tangential force, and of the normal force's dashpot alone.
+pub(super) const NS: usize = 12;
 pub(super) type State = [f64; NS];
 pub(super) const X: usize = 0;
 pub(super) const Y: usize = 1;
@@ -19,6 +19,7 @@ pub(super) const W2: usize = 7;
 pub(super) const XI: usize = 8;
 pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
+pub(super) const WD: usize = 11;
 
 /// The tangential law of a piece.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -154,8 +155,10 @@ impl<G: PairGeometry> PairOde<'_, G> {
         ds[W1] = f[2] * self.inv[1];
         ds[6] = s[W2];
         ds[W2] = f[3] * self.inv[2];
-        ds[WN] = dot(&e.el, &v) + dot(&e.damp, &v);
+        let p_d = dot(&e.damp, &v);
+        ds[WN] = dot(&e.el, &v) + p_d;
         ds[WT] = e.f_t * e.v_t;
+        ds[WD] = p_d;
         e
     }
 
