@@ -485,7 +485,9 @@ fn polygon_patch(
         pb.iter().copied(),
         reach,
         |patch, points| {
-            let mut p = assemble(at, patch.area, patch.centroid, patch.chord?, points)?;
+            let chord = patch.chord?;
+            let across = edge_under(chord, [pa, pb], at, reach);
+            let mut p = assemble(at, patch.area, patch.centroid, chord, points, across)?;
             if springs {
                 p.springs = corner_springs(pa, pb, points, at);
             }
@@ -494,18 +496,55 @@ fn polygon_patch(
     )?
 }
 
+/// Chords shorter than this part of the reach look for an edge under them (`edge_under`).
+const SHORT_CHORD: f64 = 1e-3;
+
+/// Where a short chord's ends both lie on one edge of either polygon (a corner pressing into
+/// an edge: the overlap a sliver of that edge), the normal of that edge (unnormalised): the
+/// chord's own direction carries the round-off of its ends over its length, 1e-3 at a chord of
+/// 1e-14 m, where the edge's carries it over the edge's. `None` for longer chords and chords
+/// across two edges.
+fn edge_under(
+    chord: [[f64; 2]; 2],
+    polygons: [&[[f64; 2]]; 2],
+    at: [f64; 2],
+    reach: f64,
+) -> Option<[f64; 2]> {
+    let [c0, c1] = chord;
+    let d = sub(c1, c0);
+    if d[0].hypot(d[1]) >= SHORT_CHORD * reach {
+        return None;
+    }
+    let ulps = MIN_CHORD_ULPS * f64::EPSILON * (at[0].abs() + at[1].abs() + reach);
+    for poly in polygons {
+        let n = poly.len();
+        for j in 0..n {
+            let (p, e) = (poly[j], sub(poly[(j + 1) % n], poly[j]));
+            let len = e[0].hypot(e[1]);
+            let off = |x: [f64; 2]| cross(e, sub(x, p)).abs();
+            if off(c0) <= ulps * len && off(c1) <= ulps * len {
+                return Some([-e[1], e[0]]);
+            }
+        }
+    }
+    None
+}
+
 /// A disc with a polygon ([`ShapePair::disc_and_polygon`]): the disc's centre and radius, the
 /// polygon with where it is placed and how far turned, the sign of the disc's push.
 type DiscAndPolygon<'a> = ([f64; 2], f64, (&'a Polygon, [f64; 2], f64), f64);
 
 /// The patch from the overlap's area, centroid, chord and vertices, the particle's centre at
-/// `q` (no springs).
+/// `q` (no springs); `across`, where known, a vector perpendicular to the chord that is known
+/// more precisely than the chord's own direction where the chord is short (see
+/// `disc_polygon`).
 fn assemble(
     q: [f64; 2],
     area: f64,
     centroid: [f64; 2],
     [p0, p1]: [[f64; 2]; 2],
     points: &[([f64; 2], bool)],
+    across: Option<[f64; 2]>,
 ) -> Option<ShapePatch> {
     let d = sub(p1, p0);
     let chord = d[0].hypot(d[1]);
@@ -515,7 +554,15 @@ fn assemble(
     if !(chord > resolution && area > 0.0) {
         return None;
     }
-    let mut n = [-d[1] / chord, d[0] / chord];
+    // The chord's direction carries the round-off of its ends over its length; `across`
+    // carries theirs over its own, and is taken where that is the longer.
+    let mut n = match across {
+        Some(m) if m[0].hypot(m[1]) > chord => {
+            let len = m[0].hypot(m[1]);
+            [m[0] / len, m[1] / len]
+        }
+        _ => [-d[1] / chord, d[0] / chord],
+    };
     if dot(n, sub(q, p0)) < 0.0 {
         n = [-n[0], -n[1]];
     }

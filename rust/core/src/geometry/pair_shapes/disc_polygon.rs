@@ -82,7 +82,13 @@ pub(super) fn disc_polygon(
             p.0 = [p.0[0] + c[0], p.0[1] + c[1]];
         }
         let chord = [[a[0] + c[0], a[1] + c[1]], [b[0] + c[0], b[1] + c[1]]];
-        assemble(q, area, centroid, chord, points)
+        // Both ends lie on the circle, so the radius through the chord's midpoint is
+        // perpendicular to it: known to the round-off of r, where the chord's own direction
+        // (a short chord, just after touch) is known only to that of r over its length (1e-3
+        // at a chord of 1e-14 m, which set a spring's elongation at stick 5e-4 apart between
+        // tolerances).
+        let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        assemble(q, area, centroid, chord, points, Some(mid))
     })
 }
 

@@ -223,3 +223,40 @@ fn springs_push_down_their_potential() {
         }
     }
 }
+
+/// A corner pressed a sliver deep (1e-14 m: a chord 25 times the round-off of the centres'
+/// coordinates) into a disc, or into a polygon's edge, takes the exact normal: the radius
+/// through the corner, or the edge's normal. Taken from the chord's own direction it was off
+/// by ~1e-4 (the round-off of its ends over its length), which set a stuck spring's elongation
+/// apart between tolerances (docs/model.md 17.8).
+#[test]
+fn a_sliver_takes_the_exact_normal() {
+    let (r, r2, depth) = (0.01, 0.02, 1e-14);
+    let (particle, disc, edge) = (square(r), Shape::Disc { r: r2 }, square(r2));
+    let into_disc = ShapePair::new(&particle, &disc).unwrap();
+    for alpha in [0.0f64, 0.3, -1.1, 2.0] {
+        // The square's corner (at angle phi from its centre) points at the disc's centre.
+        let u = [alpha.sin(), alpha.cos()];
+        let reach = r2 - depth + r;
+        let phi = (-u[1]).atan2(-u[0]);
+        let p = into_disc
+            .patch(&[reach * u[0], reach * u[1], phi, 0.0])
+            .unwrap();
+        let err = (p.n[0] - u[0]).hypot(p.n[1] - u[1]);
+        assert!(
+            err < 1e-12,
+            "disc, alpha {alpha}: normal {:?} off by {err:e}",
+            p.n
+        );
+    }
+    // The partner turned by 45 degrees: its top edge at y = r2 / sqrt 2, normal +y.
+    let into_edge = ShapePair::new(&particle, &edge).unwrap();
+    for x in [0.0, 0.001, -0.0037] {
+        let top = r2 / 2f64.sqrt();
+        let p = into_edge
+            .patch(&[x, top + r - depth, -PI / 2.0, PI / 4.0])
+            .unwrap();
+        let err = p.n[0].hypot(p.n[1] - 1.0);
+        assert!(err < 1e-12, "edge, x {x}: normal {:?} off by {err:e}", p.n);
+    }
+}
