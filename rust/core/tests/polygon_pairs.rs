@@ -443,3 +443,51 @@ fn a_slip_sticks_where_an_entering_corner_widens_the_cone() {
         "{gear5:?} vs {reference:?}"
     );
 }
+
+/// Gear-5 steps the tangential law of section 5 as it is written, and the adaptive path is
+/// its continuous limit: with friction too they converge to one answer (first order for
+/// Gear-5, at the springs' unlocated switches). Three ways they once parted, each converging
+/// to its own answer (e_T 0.04 apart at dt_factor 1e-4): twin 120-gons whose normal force is
+/// clipped and released while they overlap (the adaptive path reset the spring at the
+/// release, its dashpot's whole force acting at once); twin 120-gons where a corner leaves
+/// during a slip, its pulling dashpot gone and the cone wider (the adaptive path slipped on
+/// where the stepped law sticks); twin triangles whose touch's probe met a chord of 2e-16 m,
+/// its normal across the springs' push, which turned the contact's normal into the partner
+/// (friction's sign reversed at the touch).
+#[test]
+fn frictional_linear_pairs_gear5_converges_to_the_reference() {
+    // (n, mu, theta, omega_in r / v, phi1, phi2): damped (zeta 0.2, gamma_t 0.5), kn 1e5.
+    let cases = [
+        (120, 10.0, 85.0, 0.0014, 135.0, 0.0),
+        (120, 0.3, 85.0, 0.5, 306.22, 144.24),
+        (3, 0.3, 60.0, 0.5, 301.41, 261.70),
+    ];
+    for (n, mu, theta, w, phi1, phi2) in cases {
+        let shape = gon(n);
+        let mass = 2500.0 * shape.area();
+        let scene = Scene {
+            shape: shape.clone(),
+            mu,
+            gamma_t: 0.5,
+            normal_law: NormalLaw::Linear { kn: 0.0, cn: 0.0 }.with_scale(1e5, 0.2, mass),
+            integrator: Integrator::Reference,
+            partner: Some(Partner::of(shape)),
+            ..Scene::default()
+        };
+        let init = Initial::from_angle(V, theta, w * V / R, phi1).with_partner(0.0, phi2);
+        let reference = run(&scene, &init);
+        let err = |dt_factor| {
+            let gear5 = Scene {
+                integrator: Integrator::Gear5,
+                dt_factor,
+                ..scene.clone()
+            };
+            run(&gear5, &init).accuracy_distance(&reference, R, V)
+        };
+        let errors = [err(1e-2), err(1e-3), err(1e-4)];
+        assert!(
+            errors[1] < 0.3 * errors[0] && errors[2] < 0.3 * errors[1] && errors[2] < 1e-3,
+            "{n}-gons, mu {mu}, theta {theta}: Gear-5's distance from the reference {errors:?}"
+        );
+    }
+}

@@ -205,11 +205,16 @@ impl<'a> ShapePair<'a> {
     /// The contact's frame from the overlap `p` at lanes `q`.
     fn frame_of(&self, p: ShapePatch, q: &[f64; 4]) -> PairFrame {
         // The contact's normal: the chord's, or under the linear law the direction of the
-        // springs' push, so that friction acts across the normal force; turned to the
-        // chord's side, so that a lone held spring's normal keeps its direction where its
-        // depth (signed, see `frame_held`) passes zero at the piece's end.
+        // springs' push, so that friction acts across the normal force; turned to the side
+        // of the springs' own directions (their sum, exact), so that a lone held spring's
+        // normal keeps its direction where its depth (signed, see `frame_held`) passes zero
+        // at the piece's end. Not to the chord's side: just past a touch, at a chord of
+        // 2e-16 m across a corner, the chord's normal lay across the push and turned it into
+        // the partner (twin triangles: friction's sign reversed at the touch, e_T 0.03 off).
         let push = [p.springs.push[0], p.springs.push[1]];
-        let norm = push[0].hypot(push[1]).copysign(dot(push, p.n));
+        let sum = [p.springs.sum[0], p.springs.sum[1]];
+        let side = if sum == [0.0; 2] { p.n } else { sum };
+        let norm = push[0].hypot(push[1]).copysign(dot(push, side));
         let n = if self.springs && norm != 0.0 {
             [push[0] / norm, push[1] / norm]
         } else {

@@ -260,3 +260,57 @@ fn a_sliver_takes_the_exact_normal() {
         assert!(err < 1e-12, "edge, x {x}: normal {:?} off by {err:e}", p.n);
     }
 }
+
+/// Twin squares, a corner of the particle exactly on the partner's edge (a state the adaptive
+/// path located at a switch): parry's edge chase returned the particle whole there (area
+/// 2e-4 m^2, one crossing, no chord) and the contact's frame fell back to its held corners,
+/// moving the centroid 4e-6 m for that one state (twin squares and their copy ten times as
+/// large 5e-5 apart in e_T). The clip's overlap is the one a round-off away, where parry
+/// finds it.
+#[test]
+fn a_corner_on_an_edge_keeps_its_overlap() {
+    let sq = square(0.01);
+    let pair = ShapePair::new(&sq, &sq).unwrap();
+    let on_edge = [
+        1.0933371791897257e-5,
+        0.019599452157717794,
+        1.61035704090474,
+        -0.0014892791671718864,
+    ];
+    let beside = [
+        1.0933371791899236e-5,
+        0.01959945215771779,
+        1.6103570409047405,
+        -0.0014892791671719781,
+    ];
+    let (a, b) = (pair.patch(&on_edge).unwrap(), pair.patch(&beside).unwrap());
+    assert!((a.area - b.area).abs() < 1e-9 * b.area, "{a:?} vs {b:?}");
+    assert!((a.chord - b.chord).abs() < 1e-9 * b.chord, "{a:?} vs {b:?}");
+    let moved = (a.centroid[0] - b.centroid[0]).hypot(a.centroid[1] - b.centroid[1]);
+    assert!(moved < 1e-15, "centroid moved {moved:e}: {a:?} vs {b:?}");
+}
+
+/// Twin triangles just past their touch (a chord of 2.4e-16 m): the chord's own normal lay
+/// nearly across the line of centres, and the springs' push, turned to its side, pointed into
+/// the partner; the contact's friction then acted with the sliding, not against it. The
+/// normal is the push turned to the side of the springs' own directions: towards the
+/// particle.
+#[test]
+fn a_touching_corner_pushes_the_particle_away() {
+    let tri = ngon(0.01, 3);
+    let mut pair = ShapePair::new(&tri, &tri).unwrap();
+    pair.springs = true;
+    let q = [
+        1.0159105823050462e-16,
+        0.012827235745996663,
+        5.260596898436119,
+        4.5675266524691605,
+    ];
+    let fr = pair.frame(&q).unwrap();
+    let push = fr.springs.push;
+    assert!(
+        fr.n[0] * push[0] + fr.n[1] * push[1] > 0.0 && fr.n[1] > 0.9,
+        "normal {:?}, push {push:?}",
+        fr.n
+    );
+}

@@ -339,8 +339,14 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                 }
             }
             Event::ClipOff => {
+                // Still in contact, the spring takes up where the clip left it: carrying the
+                // dashpot's force alone, no tangential force (docs/model.md, section 5), as
+                // on the plate and in the fixed loops. Reset to 0 instead, the dashpot's
+                // full force acted at once: twin 120-gons (linear law, mu 10, 85 deg) ended
+                // 0.038 apart in e_T from Gear-5, which converges to this.
+                let clipped = ode.eval_new(&self.mode, s).1;
+                s[XI] = ode.slipping_xi(&clipped);
                 self.mode.clipped = false;
-                s[XI] = 0.0;
                 self.mode.tan = ode.initial_tan(&self.mode, s);
             }
             Event::ToSlip => {
@@ -358,29 +364,43 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     }
 
     /// The held springs switch (a corner enters or leaves the other body, or turns to another
-    /// edge). Where a corner enters, the normal force jumps by its dashpot, and the cone with
-    /// it: a slip whose cone grows past the friction it exerts sticks there, the spring keeping
-    /// that force. In slip the spring follows the cone; following the jump it was charged with
-    /// no work done, and gave it back (twin pentagons at mu = 1000, damped: +24 % energy).
-    /// Where a corner leaves, the slip goes on (sticking there too, at a cone barely wider, set
-    /// the stick/slip boundary on a knife's edge: twin squares at mu = 0.5 and their copy ten
-    /// times as large came 5e-5 apart in e_T).
+    /// edge): the normal force jumps by a corner's dashpot, and the springs' resultant, which
+    /// is the normal, turns, and the tangential velocity with it. The tangential spring goes
+    /// through the switch unchanged (a slip's at its slipping elongation), and the mode is
+    /// decided again on the new side: a slip sticks where its trial force lies inside the new
+    /// cone, a stick slips where it lies outside (the continuous limit of the stepped law,
+    /// section 5, to which Gear-5 converges). Where no force changes (a corner turning to
+    /// another edge) the mode is kept, round-off being no reason to switch. Sticking only
+    /// where a corner entered and keeping the spring's force instead of its elongation, this
+    /// path and Gear-5 converged to answers 0.002 to 0.04 apart in e_T (twin squares and
+    /// 120-gons, damped, mu 0.5 and 0.3), and the order of a slip's end and a switch located
+    /// together decided the answer (a square pair and its copy ten times as large 5e-5 apart).
     fn switch_springs(&mut self) {
         let before = self.ode.eval_new(&self.mode, &self.s).1;
         let q = [self.s[X], self.s[Y], self.s[4], self.s[6]];
-        let held = self.ode.geometry.held_springs(&q);
-        let entering = held.springs.len() > self.ode.held.springs.len();
-        self.ode.held = held;
-        if !(entering && matches!(self.mode.tan, Tan::Slip(_))) {
+        self.ode.held = self.ode.geometry.held_springs(&q);
+        if self.mode.clipped || self.mode.apart {
             return;
         }
-        let after = self.ode.eval_new(&self.mode, &self.s).1;
-        // Beyond the round-off of an unchanged cone (a corner turning to another edge leaves
-        // the force as it was): decided by round-off, the scaled copies of one impact parted.
-        if self.ode.mu * (after.f_el + after.f_d) > before.f_t.abs() * (1.0 + 1e-9) {
-            let (k_xi, _, ct) = self.ode.pair.law.spring(after.depth.max(0.0));
-            self.s[XI] = -(before.f_t + ct * after.v_t) / k_xi;
+        let slipping = match self.mode.tan {
+            Tan::Slip(_) => true,
+            Tan::Stick => false,
+            Tan::None | Tan::Free => return,
+        };
+        if slipping {
+            self.s[XI] = self.ode.slipping_xi(&before);
+        }
+        let stick = Mode {
+            tan: Tan::Stick,
+            ..self.mode
+        };
+        let after = self.ode.eval_new(&stick, &self.s).1;
+        let (trial, cone) = (after.trial.abs(), self.ode.mu * (after.f_el + after.f_d));
+        if slipping && cone > trial * (1.0 + 1e-9) {
             self.mode.tan = Tan::Stick;
+        } else if !slipping && trial > cone * (1.0 + 1e-9) {
+            self.mode.tan = Tan::Slip(after.trial.signum());
+            self.rec.slip_events += 1;
         }
     }
 
