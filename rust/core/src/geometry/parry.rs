@@ -329,13 +329,24 @@ fn intersect(particle: &[V], obstacle: &[V], out: &mut Vec<(V, bool)>) -> Option
             || (l1.is_none() && on_boundary(particle, point));
         out.push((point, crossing));
     });
-    // Two convex boundaries that cross do so at least twice. Where a corner lies exactly on
-    // the other's edge parry's edge chase can lose its way and return one polygon whole, with
-    // one crossing (two squares, a corner on an edge: the particle's whole area, no chord, so
-    // the contact's centroid jumped for that one state). Then the overlap is clipped here.
-    if out.len() >= 3 && out.iter().filter(|(_, c)| *c).count() < 2 {
-        clip_convex(particle, obstacle, out);
+    match patch_of(out) {
+        // Two convex boundaries that cross do so at least twice. Where a corner lies exactly
+        // on the other's edge parry's edge chase can lose its way and return one polygon
+        // whole, with one crossing (two squares, a corner on an edge: the particle's whole
+        // area, no chord, so the contact's centroid jumped for that one state). Then the
+        // overlap is clipped here (checked on the chord, which is searched for anyway: the
+        // common path gains nothing; 12-gon pairs 527 against 525 ns per step).
+        Some(p) if p.chord.is_none() => {
+            clip_convex(particle, obstacle, out);
+            patch_of(out)
+        }
+        p => p,
     }
+}
+
+/// Area, centroid and chord of the overlap polygon `out` (its vertices with their crossing
+/// marks); `None` for fewer than three vertices or no area.
+fn patch_of(out: &[(V, bool)]) -> Option<Patch> {
     if out.len() < 3 {
         return None;
     }
@@ -392,6 +403,8 @@ enum Along {
 /// cut from a particle's edge is a crossing; one cut from an edge the clip made (along the
 /// obstacle's boundary) is the obstacle's corner (a crossing only on the particle's boundary). O(n m), against parry's O(n + m): used only
 /// where parry's result is inconsistent.
+#[cold]
+#[inline(never)]
 fn clip_convex(particle: &[V], obstacle: &[V], out: &mut Vec<(V, bool)>) {
     let mut poly: Vec<(V, bool, Along)> = particle
         .iter()
