@@ -106,6 +106,8 @@ struct Run<'a, G> {
     t_touch: f64,
     /// How far past a touch its mode is probed (s).
     probe_dt: f64,
+    /// The probe of a touch just applied, for the next piece's first derivative.
+    touch_probe: Option<State>,
     /// The sliding speed along a slip's force past which the slip ends (m/s).
     slip_margin: f64,
     y0: f64,
@@ -156,11 +158,12 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             apart: false,
             tan: Tan::None,
         };
-        mode.tan = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
+        let probe;
+        (mode.tan, probe) = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
         let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
         let weight =
             error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
-        let k1 = ode.eval_new(&mode, &s).0;
+        let k1 = ode.touch_derivative(&mode, &s, &probe);
         let h_max = law.scene.dt_factor * law.t_ref;
         Run {
             ode,
@@ -182,6 +185,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             separated: false,
             t_touch: 0.0,
             probe_dt: 1e-12 * t_est,
+            touch_probe: None,
             slip_margin: 1e-6 * speed,
             y0: start.q[1],
             n_sep: [0.0, 1.0],
@@ -240,7 +244,10 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                 self.end_a_reversed_slip();
             }
         }
-        self.k1 = self.ode.eval_new(&self.mode, &self.s).0;
+        self.k1 = match self.touch_probe.take() {
+            Some(probe) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
+            None => self.ode.eval_new(&self.mode, &self.s).0,
+        };
         self.h = (h * step_factor(err.max(1e-12))).min(self.h_max);
         true
     }
@@ -327,7 +334,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                     tan: Tan::None,
                 };
                 s[XI] = 0.0;
-                self.mode.tan = ode.mode_after_touch(&self.mode, s, self.probe_dt);
+                let probe;
+                (self.mode.tan, probe) = ode.mode_after_touch(&self.mode, s, self.probe_dt);
+                self.touch_probe = Some(probe);
                 self.t_touch = self.t;
                 self.rec.contacts += 1;
             }
@@ -379,7 +388,11 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let before = self.ode.eval_new(&self.mode, &self.s).1;
         let q = [self.s[X], self.s[Y], self.s[4], self.s[6]];
         self.ode.held = self.ode.geometry.held_springs(&q);
-        if self.mode.clipped || self.mode.apart {
+        if self.mode.apart {
+            return;
+        }
+        if self.mode.clipped {
+            self.release_a_clip(before.f_raw);
             return;
         }
         let slipping = match self.mode.tan {
@@ -401,6 +414,20 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         } else if !slipping && trial > cone * (1.0 + 1e-9) {
             self.mode.tan = Tan::Slip(after.trial.signum());
             self.rec.slip_events += 1;
+        }
+    }
+
+    /// A clipped force that a switch of the springs turned to pushing (an entering corner's
+    /// dashpot, or a leaving corner's pull gone; `before` the force before the switch) is
+    /// released there. Left to the clip's event, positive from the start of the next step, the
+    /// release went unseen where the push ended within that step (the event fires on its
+    /// value at the step's end): twin 120-gons (damped, mu 0.3, 20 deg) with a largest step of
+    /// 1 t_ref ended 0.035 from the reference in e_N at every tol, err_est 2 tol.
+    fn release_a_clip(&mut self, before: f64) {
+        let after = self.ode.eval_new(&self.mode, &self.s).1.f_raw;
+        // A jump beyond round-off: at a corner turning to another edge the force is unchanged.
+        if after > 0.0 && after - before > 1e-9 * (after.abs() + before.abs()) {
+            self.apply(Event::ClipOff);
         }
     }
 
