@@ -493,28 +493,32 @@ fn frictional_linear_pairs_gear5_converges_to_the_reference() {
 }
 
 /// The adaptive path at its largest step (dt_factor 1, the Python default) meets its tolerance
-/// on damped linear-law pairs (at most 3 tol from the reference in e_N, e_T, e_kin and
-/// omega_out r / v). Two ways it once missed by far more, whatever the tolerance: the first
-/// stage of the step from touch lacked the dashpot's force c_n v_n (evaluated at the touch
-/// itself, where no overlap acts), losing 9 % of that step's impulse (two discs: 7 tol at tol
-/// 1e-6, 20 tol at 1e-10); and twin 120-gons whose clipped force an entering corner turned to
-/// pushing for less than a step stayed clipped (e_N 0.035 off at every tol).
+/// on linear-law pairs (at most 3 tol from the reference in e_N, e_T, e_kin and omega_out r / v).
+/// Three ways it once missed by far more, whatever the tolerance: the first stage of the step
+/// from touch lacked the dashpot's force c_n v_n (evaluated at the touch itself, where no
+/// overlap acts), losing 9 % of that step's impulse (two damped discs: 7 tol at tol 1e-6, 20 tol
+/// at 1e-10); twin 120-gons whose clipped force an entering corner turned to pushing for less
+/// than a step stayed clipped (damped: e_N 0.035 off at every tol); and twin 120-gons whose
+/// slip the entering corners ended for less than a step kept slipping (elastic: 2e-5 off at tol
+/// 1e-8).
 #[test]
-fn damped_linear_pairs_meet_the_tolerance_at_the_largest_step() {
-    // (n, mu, theta, omega_in r / v, phi1, phi2); n = 0: two discs.
+fn linear_pairs_meet_the_tolerance_at_the_largest_step() {
+    // (n, mu, damped, theta, omega_in r / v, phi1, phi2); n = 0: two discs.
     let cases = [
-        (0, 0.0, 89.0, 0.0, 0.0, 0.0),
-        (0, 0.3, 20.0, 0.5, 263.58, 164.99),
-        (120, 0.3, 20.0, -2.0, 314.10, 199.54),
+        (0, 0.0, true, 89.0, 0.0, 0.0, 0.0),
+        (0, 0.3, true, 20.0, 0.5, 263.58, 164.99),
+        (120, 0.3, true, 20.0, -2.0, 314.10, 199.54),
+        (120, 0.3, false, 20.0, 0.0, 89.33, 228.40),
     ];
-    for (n, mu, theta, w, phi1, phi2) in cases {
+    for (n, mu, damped, theta, w, phi1, phi2) in cases {
         let shape = if n == 0 { Shape::Disc { r: R } } else { gon(n) };
         let mass = 2500.0 * shape.area();
+        let zeta = if damped { 0.2 } else { 0.0 };
         let scene = Scene {
             shape: shape.clone(),
             mu,
-            gamma_t: 0.5,
-            normal_law: NormalLaw::Linear { kn: 0.0, cn: 0.0 }.with_scale(1e5, 0.2, mass),
+            gamma_t: if damped { 0.5 } else { 0.0 },
+            normal_law: NormalLaw::Linear { kn: 0.0, cn: 0.0 }.with_scale(1e5, zeta, mass),
             integrator: Integrator::Reference,
             partner: Some(Partner::of(shape)),
             ..Scene::default()
@@ -531,7 +535,7 @@ fn damped_linear_pairs_meet_the_tolerance_at_the_largest_step() {
             let err = run(&adaptive, &init).accuracy_distance(&reference, R, V);
             assert!(
                 err <= 3.0 * tol,
-                "n {n}, mu {mu}, theta {theta}, tol {tol}: error {:.2} tol",
+                "n {n}, mu {mu}, damped {damped}, theta {theta}, tol {tol}: error {:.2} tol",
                 err / tol
             );
         }
