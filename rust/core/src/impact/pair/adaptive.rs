@@ -106,7 +106,8 @@ struct Run<'a, G> {
     t_touch: f64,
     /// How far past a touch its mode is probed (s).
     probe_dt: f64,
-    /// The probe of a touch just applied, for the next piece's first derivative.
+    /// The probe of a touch just applied, for the next piece's first derivative
+    /// (`PairOde::touch_derivative`).
     touch_probe: Option<State>,
     /// The sliding speed along a slip's force past which the slip ends (m/s).
     slip_margin: f64,
