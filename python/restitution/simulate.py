@@ -86,8 +86,8 @@ class Record:
     """|linear momentum after - before| / (m* v): round-off for a pair (integrated in its
     centre-of-mass frame); None for the plate."""
     angular_momentum_residual: float | None
-    """(angular momentum about the pair's centre of mass after - before) / (m* v (r1 + r2)); None
-    for the plate."""
+    """(angular momentum about the pair's centre of mass after - before) / (m* v (r1 + r2)):
+    round-off for a pair (restored by a rigid turn, docs/model.md 17.2); None for the plate."""
     work_damping: float
     """The part of ``work_normal`` done by the normal dashpot (<= 0); ``work_normal - work_damping``
     is the elastic force's: <= 0 where the law has a potential, of either sign for the area law

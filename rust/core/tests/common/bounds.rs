@@ -80,19 +80,13 @@ pub fn documented_residual_bound(scene: &Scene) -> f64 {
     }
 }
 
-/// The largest |angular momentum residual| of a pair (relative to m* v (r1 + r2)), the issue's
-/// 1e-12: the forces act at one point on the line of centres, so the equations conserve it, and
-/// Verlet and the reference keep it to round-off (<= 1e-13 over the matrix), the adaptive path
-/// to a small part of its tolerance (measured 2.6e-5 tol at tol 1e-6, 1.5e-3 tol at 1e-9).
-/// Gear-5's predictor-corrector keeps it only to its own error: up to 7.4e-10 measured over the
-/// matrix at the default step, 3.7e-9 on an undamped linear spring at mu 1e3, falling like dt^2
-/// (`tests/pairs.rs`).
-pub fn documented_angular_momentum_bound(scene: &Scene) -> f64 {
-    match scene.integrator {
-        Integrator::Gear5 => 1e-8,
-        Integrator::Adaptive => 1e-2 * scene.tol,
-        _ => 1e-12,
-    }
+/// The largest |angular momentum residual| of a pair (relative to m* v (r1 + r2)): the issue's
+/// 1e-12 for every integrator. The forces act at one point on both bodies, so the equations
+/// conserve it, and the integrators restore it by a rigid turn of the pair (`Pair::restoring_turn`);
+/// before that Gear-5 drifted by up to 7.4e-10 over the matrix at the default step and 3.7e-9
+/// on an undamped linear spring at mu 1e3, the adaptive path by 2.6e-5 tol.
+pub fn documented_angular_momentum_bound(_scene: &Scene) -> f64 {
+    1e-12
 }
 
 /// Whether `scene` is a pair in which a body has corners (docs/model.md, section 17.8).

@@ -61,9 +61,11 @@ pub(super) fn close_pair(
         m1 * v1[1] + m2 * v2[1] - m1 * g0[1],
     ];
     rec.momentum_residual = Some(p[0].hypot(p[1]) / (ms * speed));
-    let (i1, i2) = (pair.particle.inertia, pair.i2);
-    let l_in = ms * (0.0 * g0[1] - y0 * g0[0]) + i1 * init.omega + i2 * init.partner_omega;
-    let l_out = ms * (q[0] * v[1] - q[1] * v[0]) + i1 * v[2] + i2 * v[3];
+    let l_in = pair.angular_momentum(
+        &[0.0, y0, 0.0, 0.0],
+        &[g0[0], g0[1], init.omega, init.partner_omega],
+    );
+    let l_out = pair.angular_momentum(q, v);
     rec.angular_momentum_residual = Some((l_out - l_in) / (ms * speed * (r1 + r2)));
     rec.timed_out = rec.stop != StopReason::Separated;
     rec.separated = !rec.timed_out;
