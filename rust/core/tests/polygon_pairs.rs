@@ -20,6 +20,19 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs().max(1e-300)
 }
 
+/// Gear-5's distance from the reference (`scene`'s integrator) at dt_factor 1e-2, 1e-3, 1e-4.
+fn gear5_from_the_reference(scene: &Scene, init: &Initial) -> [f64; 3] {
+    let reference = run(scene, init);
+    [1e-2, 1e-3, 1e-4].map(|dt_factor| {
+        let gear5 = Scene {
+            integrator: Integrator::Gear5,
+            dt_factor,
+            ..scene.clone()
+        };
+        run(&gear5, init).accuracy_distance(&reference, R, V)
+    })
+}
+
 fn gon(n: usize) -> Shape {
     Shape::regular_polygon(R, n).unwrap()
 }
@@ -377,16 +390,7 @@ fn linear_pairs_with_corners_gear5_converges_to_the_adaptive_path() {
             ..Scene::default()
         };
         let init = Initial::from_angle(V, theta, 2.0, phi1).with_partner(-1.0, phi2);
-        let reference = run(&scene, &init);
-        let err = |dt_factor| {
-            let gear5 = Scene {
-                integrator: Integrator::Gear5,
-                dt_factor,
-                ..scene.clone()
-            };
-            run(&gear5, &init).accuracy_distance(&reference, R, V)
-        };
-        let errors = [err(1e-2), err(1e-3), err(1e-4)];
+        let errors = gear5_from_the_reference(&scene, &init);
         assert!(
             errors[1] < 0.3 * errors[0] && errors[2] < 0.3 * errors[1],
             "{a:?} / {b:?}: Gear-5 errors {errors:?}"
@@ -475,16 +479,7 @@ fn frictional_linear_pairs_gear5_converges_to_the_reference() {
             ..Scene::default()
         };
         let init = Initial::from_angle(V, theta, w * V / R, phi1).with_partner(0.0, phi2);
-        let reference = run(&scene, &init);
-        let err = |dt_factor| {
-            let gear5 = Scene {
-                integrator: Integrator::Gear5,
-                dt_factor,
-                ..scene.clone()
-            };
-            run(&gear5, &init).accuracy_distance(&reference, R, V)
-        };
-        let errors = [err(1e-2), err(1e-3), err(1e-4)];
+        let errors = gear5_from_the_reference(&scene, &init);
         assert!(
             errors[1] < 0.3 * errors[0] && errors[2] < 0.3 * errors[1] && errors[2] < 1e-3,
             "{n}-gons, mu {mu}, theta {theta}: Gear-5's distance from the reference {errors:?}"
