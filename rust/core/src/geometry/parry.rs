@@ -401,8 +401,8 @@ enum Along {
 /// with the same marks as parry's path: a crossing of the two boundaries, or a corner of one
 /// inside the other (a corner of either on the other's boundary counts as a crossing). A point
 /// cut from a particle's edge is a crossing; one cut from an edge the clip made (along the
-/// obstacle's boundary) is the obstacle's corner (a crossing only on the particle's boundary). O(n m), against parry's O(n + m): used only
-/// where parry's result is inconsistent.
+/// obstacle's boundary) is the obstacle's corner (a crossing only on the particle's boundary).
+/// O(n m), against parry's O(n + m): used only where parry's result is inconsistent.
 #[cold]
 #[inline(never)]
 fn clip_convex(particle: &[V], obstacle: &[V], out: &mut Vec<(V, bool)>) {

@@ -108,20 +108,16 @@ impl Pair {
         self.m_star * (q[0] * v[1] - q[1] * v[0]) + self.particle.inertia * v[2] + self.i2 * v[3]
     }
 
-    /// The moment of inertia of the whole pair about its centre of mass at lanes `q`:
-    /// m* |r|^2 + I1 + I2.
-    pub fn moment(&self, q: &[f64; 4]) -> f64 {
-        self.m_star * (q[0] * q[0] + q[1] * q[1]) + self.particle.inertia + self.i2
-    }
-
     /// The change of the lane velocities `v` at `q` that restores the angular momentum `l0`
     /// with the least kinetic energy: a rigid turn of the whole pair at the rate lambda,
     /// (-lambda y, lambda x, lambda, lambda), which leaves every relative velocity of the
     /// contact as it is (docs/model.md 17.2). The forces conserve the angular momentum at
     /// every instant, but a step's polynomial does not keep a product of position and
-    /// velocity; this projection keeps it to round-off. `inv_moment` is 1 / [`Pair::moment`].
-    pub fn restoring_turn(&self, q: &[f64; 4], v: &[f64; 4], l0: f64, inv_moment: f64) -> [f64; 4] {
-        let lambda = (l0 - self.angular_momentum(q, v)) * inv_moment;
+    /// velocity; this projection keeps it to round-off.
+    pub fn restoring_turn(&self, q: &[f64; 4], v: &[f64; 4], l0: f64) -> [f64; 4] {
+        // The whole pair's moment of inertia about its centre of mass: m* |r|^2 + I1 + I2.
+        let moment = self.m_star * (q[0] * q[0] + q[1] * q[1]) + self.particle.inertia + self.i2;
+        let lambda = (l0 - self.angular_momentum(q, v)) / moment;
         [-lambda * q[1], lambda * q[0], lambda, lambda]
     }
 }

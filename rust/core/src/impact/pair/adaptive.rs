@@ -448,8 +448,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let s = &mut self.s;
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
-        let pair = self.ode.pair;
-        let dv = pair.restoring_turn(&q, &v, self.l0, 1.0 / pair.moment(&q));
+        let dv = self.ode.pair.restoring_turn(&q, &v, self.l0);
         for (i, d) in [GX, GY, W1, W2].into_iter().zip(dv) {
             s[i] += d;
         }

@@ -218,9 +218,7 @@ impl<'a, S: Stepper, G: PairGeometry> PairLoop<'a, S, G> {
         // to 7e-10 of m* v (r1 + r2) per impact (Verlet's by round-off), far below their error;
         // restored after every step, as the adaptive path does, it cost a quarter of a disc
         // pair's step (40 against 32.5 ns).
-        let turn = self
-            .pair
-            .restoring_turn(&q, &v, self.l0, 1.0 / self.pair.moment(&q));
+        let turn = self.pair.restoring_turn(&q, &v, self.l0);
         for (vi, d) in v.iter_mut().zip(turn) {
             *vi += d;
         }
