@@ -26,7 +26,6 @@ what a dataset's manifest stores, so a resumed sweep can be compared key by key.
 
 from __future__ import annotations
 
-import dataclasses
 import difflib
 import math
 import sys
@@ -39,16 +38,13 @@ from .._engine import CHOICES
 from ..errors import RestitutionError
 from ..scene import Scene
 from ..shapes import ConvexPolygon, Disc, RegularPolygon, Sphere
-from .sweep import AXES, SweepSpec, check_chunk_size
+from .sweep import AXES, SCENE_KEYS, SweepSpec, check_chunk_size, spec_to_dict
 
 if sys.version_info >= (3, 11):
     import tomllib
 else:  # Python 3.10: the same parser, as a package
     import tomli as tomllib
 
-#: [scene] keys besides ``preset`` and the ``shape`` table: every field of :class:`Scene`, so a
-#: new field is a key (and part of a dataset's digest) without editing this file.
-SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name not in ("shape", "partner"))
 CHOICE_AXES = CHOICES
 PRESETS = ("default", "paper")
 SHAPE_KEYS = {"disc": ("r",), "sphere": ("r",), "regular_polygon": ("r", "n", "phi0_deg"), "convex_polygon": ("vertices", "phi0_deg")}
@@ -132,37 +128,6 @@ def _named_key(table: str, err: Exception, keys: Mapping[str, Any]) -> str:
     """``table.name`` when ``err`` names a parameter that is a key of ``table``, else ``table``."""
     name = err.parameter if isinstance(err, RestitutionError) else None
     return f"{table}.{name}" if name in keys else table
-
-
-def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
-    """The spec in the config structure, fully expanded (no preset; every axis an explicit list)."""
-    s = spec.scene
-    scene: dict[str, Any] = {k: getattr(s, k) if k in CHOICES else float(getattr(s, k))
-                             for k in SCENE_KEYS if getattr(s, k) is not None}
-    scene["shape"] = shape_to_dict(s.shape)
-    if s.partner is not None:
-        scene["partner"] = shape_to_dict(s.partner)
-    out: dict[str, Any] = {"scene": scene}
-    if spec.cases is None:
-        out["axes"] = {name: spec.axis_values(name) for name in spec.axis_names}
-    sweep: dict[str, Any] = {}
-    if chunk_size is not None:
-        sweep["chunk_size"] = chunk_size
-    if cases_file is not None:
-        sweep["cases"] = cases_file
-    if sweep:
-        out["sweep"] = sweep
-    return out
-
-
-def shape_to_dict(shape: Any) -> dict[str, Any]:
-    if isinstance(shape, Disc):
-        return {"kind": "disc", "r": float(shape.r)}
-    if isinstance(shape, Sphere):
-        return {"kind": "sphere", "r": float(shape.r)}
-    if isinstance(shape, RegularPolygon):
-        return {"kind": "regular_polygon", "r": float(shape.r), "n": int(shape.n), "phi0_deg": float(shape.phi0_deg)}
-    return {"kind": "convex_polygon", "vertices": [list(v) for v in shape.vertices], "phi0_deg": float(shape.phi0_deg)}
 
 
 def _table(data: Mapping[str, Any], key: str, fail: Any) -> dict[str, Any]:

@@ -8,6 +8,7 @@ or thread count, so the rows do not depend on either.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
@@ -19,6 +20,7 @@ import polars as pl
 from .. import _engine
 from ..errors import RestitutionError
 from ..scene import ConvexPolygon, Scene
+from ..shapes import Disc, RegularPolygon, Sphere
 from ._progress import Progress, want_progress
 
 #: Cases per engine call unless told otherwise. Each call runs on all threads with the GIL
@@ -34,6 +36,10 @@ AXES: tuple[str, ...] = _engine.CASE_COLUMNS
 #: by value; the others are checked in every combination (the time-step bound ties dt_factor
 #: to the stiffness and damping, inertia and overlap to the shape).
 _PER_VALUE = ("theta_deg", "omega_in", "v", "phi0_deg")
+
+#: A scene's fields in the config structure besides ``shape`` and ``partner``: every field of
+#: :class:`Scene`, so a new field is a key (and part of a dataset's digest) without editing this file.
+SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name not in ("shape", "partner"))
 
 #: Most combinations checked before a sweep starts; beyond it each value is checked alone and
 #: the engine still refuses a bad combination when its chunk runs, naming the case.
@@ -141,8 +147,6 @@ class SweepSpec:
 
     def to_dict(self, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
         """The spec in the config structure, fully expanded (what a dataset's manifest stores)."""
-        from .config import spec_to_dict  # config builds specs: imported here, not at the top
-
         return spec_to_dict(self, chunk_size, cases_file)
 
     @property
@@ -235,6 +239,39 @@ def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
     if a.size == 0:
         raise ValueError(f"require `{name}` non-empty")
     return np.ascontiguousarray(a)
+
+
+def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
+    """The spec in the config structure (:mod:`restitution.runs.config`), fully expanded (no
+    preset; every axis an explicit list): what a dataset's manifest stores and a config reads back."""
+    s = spec.scene
+    scene: dict[str, Any] = {k: getattr(s, k) if k in _engine.CHOICES else float(getattr(s, k))
+                             for k in SCENE_KEYS if getattr(s, k) is not None}
+    scene["shape"] = shape_to_dict(s.shape)
+    if s.partner is not None:
+        scene["partner"] = shape_to_dict(s.partner)
+    out: dict[str, Any] = {"scene": scene}
+    if spec.cases is None:
+        out["axes"] = {name: spec.axis_values(name) for name in spec.axis_names}
+    sweep: dict[str, Any] = {}
+    if chunk_size is not None:
+        sweep["chunk_size"] = chunk_size
+    if cases_file is not None:
+        sweep["cases"] = cases_file
+    if sweep:
+        out["sweep"] = sweep
+    return out
+
+
+def shape_to_dict(shape: Any) -> dict[str, Any]:
+    """A shape as its config table (``kind`` and its parameters)."""
+    if isinstance(shape, Disc):
+        return {"kind": "disc", "r": float(shape.r)}
+    if isinstance(shape, Sphere):
+        return {"kind": "sphere", "r": float(shape.r)}
+    if isinstance(shape, RegularPolygon):
+        return {"kind": "regular_polygon", "r": float(shape.r), "n": int(shape.n), "phi0_deg": float(shape.phi0_deg)}
+    return {"kind": "convex_polygon", "vertices": [list(v) for v in shape.vertices], "phi0_deg": float(shape.phi0_deg)}
 
 
 def check_chunk_size(chunk_size: Any) -> int:
