@@ -109,6 +109,26 @@ def test_bad_parameters_are_refused_by_name(make, parameter: str) -> None:
     assert err.value.parameter == parameter
 
 
+@pytest.mark.parametrize("make, parameter, value, quoted", [
+    (lambda: rs.Normal(0.5, 0.1, lo=1, hi=0), "Normal.hi", 0.0, ["lo = 1.0", "mean=0.5", "sd=0.1"]),
+    (lambda: rs.Normal(0.5, 0.1, lo=50, hi=60), "Normal.lo", 50.0, ["[50.0, 60.0]", "mean=0.5", "sd=0.1"]),
+    (lambda: rs.Normal(0.5, 0.1, hi=-60), "Normal.lo", None, ["[None, -60.0]", "mean=0.5", "sd=0.1"]),
+    (lambda: rs.LogNormal(0.0, 1.0, lo=5, hi=2), "LogNormal.hi", 2.0, ["lo = 5.0", "mean_log=0.0", "sd_log=1.0"]),
+    (lambda: rs.LogNormal(0.0, 0.01, lo=1e30, hi=1e31), "LogNormal.lo", 1e30,
+     ["[1e+30, 1e+31]", "mean_log=0.0", "sd_log=0.01"]),
+], ids=["normal-empty", "normal-far", "normal-far-below", "lognormal-empty", "lognormal-far"])
+def test_truncation_errors_quote_the_users_numbers(make, parameter: str, value: float | None,
+                                                     quoted: list[str]) -> None:
+    """Issue 42: the check runs on z-scores (logs for LogNormal), but the message must quote
+    what the user wrote: ``Normal(0.5, 0.1, lo=1, hi=0)`` said "lo = 5.0 (found -5.0)"."""
+    with pytest.raises(rs.RestitutionError) as err:
+        make()
+    assert err.value.parameter == parameter
+    assert err.value.value == value
+    for text in quoted:
+        assert text in str(err.value), (text, str(err.value))
+
+
 def test_dict_form_round_trips_and_names_bad_keys() -> None:
     for d in (rs.Uniform(0.0, 60.0), rs.Normal(0.5, 0.1, lo=0.0), rs.LogNormal(0.0, 0.5, hi=3.0),
               rs.Choice([3, 4], p=[0.25, 0.75])):

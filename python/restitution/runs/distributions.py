@@ -200,15 +200,23 @@ class Distribution:
         return out
 
 
-def _truncation(owner: str, lo: float | None, hi: float | None, cdf: Any) -> tuple[float, float]:
-    """(F(lo), F(hi)) of the untruncated CDF; refuses an empty or massless interval."""
+def _normal_window(owner: str, law: str, lo: float | None, hi: float | None, a: float,
+                   b: float) -> tuple[float, float, bool]:
+    """(Phi(a), Phi(b), flip) of the standard normal truncated to z in [a, b], the user's
+    ``[lo, hi]`` as z-scores; refuses an empty or massless truncation quoting ``lo``, ``hi`` and
+    ``law`` (the user's numbers, not the z-scores or logs they become)."""
     if lo is not None and hi is not None and not lo < hi:
-        raise RestitutionError(f"{owner}.hi", hi, f"> lo = {lo}")
-    f_lo = 0.0 if lo is None else cdf(lo)
-    f_hi = 1.0 if hi is None else cdf(hi)
+        raise RestitutionError(f"{owner}.hi", hi, f"> lo = {lo} of {law}")
+    # Far in the upper tail Phi(a) rounds to 1: draw from the mirror image [-b, -a] there,
+    # where Phi keeps its relative precision, and negate.
+    flip = a > 0.0
+    if flip:
+        a, b = -b, -a
+    f_lo, f_hi = normal_cdf(a), normal_cdf(b)
     if not f_hi - f_lo > 1e-300:
-        raise RestitutionError(f"{owner}.lo", lo, f"a truncation [lo, hi] = [{lo}, {hi}] holding some probability")
-    return f_lo, f_hi
+        raise RestitutionError(f"{owner}.lo", lo, f"a truncation [lo, hi] = [{lo}, {hi}] holding some "
+                               f"probability of {law} (its probability under that law is below 1e-300)")
+    return f_lo, f_hi, flip
 
 
 @dataclass(frozen=True)
@@ -267,13 +275,8 @@ class Normal(Distribution):
             object.__setattr__(self, k, v)
         a = -math.inf if lo is None else (lo - mean) / sd
         b = math.inf if hi is None else (hi - mean) / sd
-        # Far in the upper tail Phi(a) rounds to 1: draw from the mirror image [-b, -a] there,
-        # where Phi keeps its relative precision, and negate.
-        flip = a > 0.0
-        if flip:
-            a, b = -b, -a
-        f_lo, f_hi = _truncation("Normal", a if a > -math.inf else None, b if b < math.inf else None, normal_cdf)
-        object.__setattr__(self, "_f", (f_lo, f_hi, flip))
+        window = _normal_window("Normal", f"Normal(mean={mean}, sd={sd})", lo, hi, a, b)
+        object.__setattr__(self, "_f", window)
 
     def ppf(self, u: np.ndarray) -> np.ndarray:
         f_lo, f_hi, flip = self._f
@@ -313,12 +316,17 @@ class LogNormal(Distribution):
             raise RestitutionError("LogNormal.lo", lo, ">= 0 (the law lives on x > 0)")
         if hi is not None and hi <= 0.0:
             raise RestitutionError("LogNormal.hi", hi, "> 0 (the law lives on x > 0)")
+        mean_log, sd_log = _finite("LogNormal", "mean_log", self.mean_log), _finite("LogNormal", "sd_log", self.sd_log)
+        if not sd_log > 0.0:
+            raise RestitutionError("LogNormal.sd_log", sd_log, "> 0")
+        law = f"LogNormal(mean_log={mean_log}, sd_log={sd_log})"
+        log_lo, log_hi = None if not lo else math.log(lo), None if hi is None else math.log(hi)
+        _normal_window("LogNormal", law, lo, hi, -math.inf if log_lo is None else (log_lo - mean_log) / sd_log,
+                       math.inf if log_hi is None else (log_hi - mean_log) / sd_log)
         try:
-            inner = Normal(self.mean_log, self.sd_log, None if not lo else math.log(lo),
-                           None if hi is None else math.log(hi))
-        except RestitutionError as err:
-            names = {"mean": "mean_log", "sd": "sd_log", "lo": "lo", "hi": "hi"}
-            raise RestitutionError("LogNormal." + names[err.parameter.split(".")[1]], err.value, err.expected) from None
+            inner = Normal(mean_log, sd_log, log_lo, log_hi)
+        except RestitutionError:  # lo < hi whose logs round to one number
+            raise RestitutionError("LogNormal.hi", hi, f"> lo = {lo} by more than rounding, for {law}") from None
         object.__setattr__(self, "mean_log", inner.mean)
         object.__setattr__(self, "sd_log", inner.sd)
         object.__setattr__(self, "lo", lo)
