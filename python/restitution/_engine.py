@@ -16,7 +16,7 @@ import numpy as np
 import polars as pl
 
 from . import _core
-from .errors import RestitutionError
+from .errors import RestitutionError, RestitutionTypeError
 
 #: Per-case input columns, in the engine's order (all float64; a choice holds its code).
 CASE_COLUMNS: tuple[str, ...] = tuple(_core.CASE_COLUMNS)
@@ -42,14 +42,69 @@ def flag(name: str, value: Any) -> float:
     """A flag (bool, or the engine's 0 / 1) as 0.0 or 1.0."""
     if isinstance(value, (bool, np.bool_)) or (isinstance(value, numbers.Real) and value in (0, 1)):
         return float(bool(value))
-    raise TypeError(f"`{name}` must be True or False (found {type(value).__name__} {value!r})")
+    raise RestitutionTypeError(name, _found(value), "True or False")
+
+
+#: What a numeric parameter accepts, in words (the rule of :func:`is_real`).
+REAL = "a real number (not a bool or a string)"
+
+
+def is_real(value: Any) -> bool:
+    """The one type rule of a numeric parameter: a real number, bools (Python's or numpy's) excluded."""
+    return _real_type(type(value))
+
+
+def _real_type(kind: type) -> bool:
+    return issubclass(kind, numbers.Real) and not issubclass(kind, (bool, np.bool_))
+
+
+def _found(value: Any) -> str:
+    return f"{type(value).__name__} {value!r:.80}"
 
 
 def real(name: str, value: Any) -> float:
-    """A real number (bool excluded) as float; the engine checks its range."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"`{name}` must be a real number (found {type(value).__name__} {value!r})")
+    """A real number (bool and str refused: :func:`is_real`) as float; the engine checks its range."""
+    if not is_real(value):
+        raise RestitutionTypeError(name, _found(value), REAL)
     return float(value)
+
+
+def reals(name: str, values: Any, *, cases: bool = False) -> np.ndarray:
+    """The values of a numeric sweep axis or ``cases`` column as float64, each by :func:`is_real`
+    (a list holding a bool or a numeric string is refused, not converted). With ``cases``, the
+    values are a cases table's rows and the error carries the row as ``.case``."""
+    return _typed(name, values, cases, "iuf", _real_type, REAL)
+
+
+def is_integer(value: Any) -> bool:
+    """An integer, bools excluded (a shape's count of corners)."""
+    return _integer_type(type(value))
+
+
+def _integer_type(kind: type) -> bool:
+    return issubclass(kind, numbers.Integral) and not issubclass(kind, (bool, np.bool_))
+
+
+def integers(name: str, values: Any, *, cases: bool = False) -> np.ndarray:
+    """:func:`reals` for an integer parameter (``n``): each value by :func:`is_integer`."""
+    return _typed(name, values, cases, "iu", _integer_type, "an integer (not a bool, a float or a string)")
+
+
+def _typed(name: str, values: Any, cases: bool, kinds: str, ok: Any, rule: str) -> np.ndarray:
+    if isinstance(values, np.ndarray) and values.dtype.kind in kinds:
+        return values.astype(np.float64)
+    try:
+        a = np.asarray(values, dtype=object)
+    except (TypeError, ValueError):  # ragged nests of arrays
+        raise RestitutionTypeError(name, f"{values!r:.80}", f"{rule}, or a 1-D array of them") from None
+    flat = a.ravel()
+    if all(ok(kind) for kind in set(map(type, flat))):  # the rule is on types: each type checked once
+        return a.astype(np.float64)
+    at = next(i for i, v in enumerate(flat) if not ok(type(v)))
+    if cases:
+        raise RestitutionTypeError(name, _found(flat[at]), rule, case=at)
+    where = f" at position {at}" if a.ndim else ""
+    raise RestitutionTypeError(name, _found(flat[at]) + where, rule)
 
 
 def optional(name: str, value: Any) -> float:
@@ -64,8 +119,8 @@ def optional(name: str, value: Any) -> float:
 
 def integer(name: str, value: Any, minimum: int) -> int:
     """An integer >= ``minimum`` (the shapes' counts, which Python builds before the engine)."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"`{name}` must be an integer (found {type(value).__name__} {value!r})")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise RestitutionTypeError(name, _found(value), "an integer (not a bool)")
     if int(value) < minimum:
         raise RestitutionError(name, value, f">= {minimum}")
     return int(value)
@@ -74,8 +129,11 @@ def integer(name: str, value: Any, minimum: int) -> int:
 def code(name: str, value: Any) -> int:
     """The engine's code of a choice's name."""
     names = CHOICES[name]
-    if not isinstance(value, str) or value not in names:
-        raise RestitutionError(name, repr(value), "one of " + ", ".join(f'"{c}"' for c in names))
+    allowed = "one of " + ", ".join(f'"{c}"' for c in names)
+    if not isinstance(value, str):
+        raise RestitutionTypeError(name, _found(value), f"a name, {allowed}")
+    if value not in names:
+        raise RestitutionError(name, repr(value), allowed)
     return names.index(value)
 
 

@@ -51,7 +51,13 @@ class RestitutionError(ValueError):
 
     def at_case(self, case: int | None) -> RestitutionError:
         """The same error for ``case`` (e.g. a chunk's row made an index in the whole sweep)."""
-        return RestitutionError(self.parameter, self.value, self.expected, case)
+        return type(self)(self.parameter, self.value, self.expected, case)
 
 
-__all__ = ["RestitutionError"]
+class RestitutionTypeError(RestitutionError, TypeError):
+    """A value of the wrong kind (a bool or a string where a number is expected, a number where
+    a name is): a :class:`RestitutionError` with the same attributes (``.case`` in a cases
+    table), and a ``TypeError``, so ``except TypeError`` keeps working."""
+
+
+__all__ = ["RestitutionError", "RestitutionTypeError"]

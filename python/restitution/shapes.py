@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from . import _core
-from ._engine import integer, real
+from ._engine import integer, real, reals
 
 
 class _Round:
@@ -85,10 +85,7 @@ class ConvexPolygon:
     _r: float = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        try:
-            v = np.asarray(self.vertices, dtype=np.float64)
-        except (TypeError, ValueError) as e:
-            raise TypeError(f"`vertices` must be an array of shape (k, 2) of numbers ({e})") from None
+        v = reals("vertices", self.vertices)  # numbers by the rule of every numeric parameter
         if v.ndim != 2 or v.shape[1] != 2:
             raise ValueError(f"require `vertices` of shape (k, 2) (found shape {v.shape})")
         _core.check_shape(0.0, 1.0, real("phi0_deg", self.phi0_deg))

@@ -24,6 +24,7 @@ from typing import Any, Mapping
 import numpy as np
 import polars as pl
 
+from .. import _engine
 from ..runs.ensemble import EnsembleSpec
 from ..runs.sweep import SweepSpec, run_in_memory
 from ..scene import Scene
@@ -283,7 +284,7 @@ def initial_grid(theta_deg: Any, spin: Any, v: Any) -> dict[str, np.ndarray]:
     """The starting nodes: sorted, distinct, checked per axis."""
     grid = {}
     for axis, values in zip(AXES, (theta_deg, spin, v)):
-        a = np.unique(np.atleast_1d(np.asarray(values, dtype=np.float64)))
+        a = np.unique(np.atleast_1d(_engine.reals(axis, values)))
         if a.ndim != 1 or a.size == 0 or not np.all(np.isfinite(a)):
             raise ValueError(f"require `{axis}` finite numbers (found {values!r:.80})")
         grid[axis] = a

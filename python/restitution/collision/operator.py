@@ -34,6 +34,7 @@ from typing import Any, Mapping
 import numpy as np
 import polars as pl
 
+from .. import _engine
 from .._core import __version__ as ENGINE_VERSION
 from ..errors import RestitutionError
 from ..runs import config as _config
@@ -108,7 +109,7 @@ class CollisionOperator:
         """
         vary_d, n_draws = _check_build(scene, vary, n, tol, n_check)
         seed = check_seed(seed)
-        spin = np.asarray(omega_in, dtype=np.float64) * scene.r / scene.v
+        spin = _engine.reals("omega_in", omega_in) * scene.r / scene.v
         grid = _build.initial_grid(theta_deg, spin, scene.v if v is None else v)
         if sampling not in SAMPLING:
             raise RestitutionError("sampling", repr(sampling), 'one of "stratified", "random"')

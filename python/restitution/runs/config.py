@@ -34,7 +34,7 @@ from typing import Any, Mapping
 
 import polars as pl
 
-from .._engine import CHOICES
+from .._engine import CHOICES, is_real
 from ..errors import RestitutionError
 from ..scene import Scene
 from ..shapes import ConvexPolygon, Disc, RegularPolygon, Sphere
@@ -150,7 +150,7 @@ def _suggest(key: str, allowed: tuple[str, ...]) -> str:
 
 
 def _number(key: str, value: Any, fail: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+    if not is_real(value):
         raise fail(key, f"require a number (found {type(value).__name__} {value!r})")
     return float(value)
 

@@ -134,7 +134,7 @@ class SweepSpec:
         self.cases = cases
         self._case_cols = {
             name: axis_values(name, cases[name].to_list() if name in _engine.CHOICES else cases[name].to_numpy(),
-                              self.scene)
+                              self.scene, cases=True)
             for name in cases.columns
         }
         self.n_cases = cases.height
@@ -206,39 +206,46 @@ class SweepSpec:
         return pl.concat([shown, _engine.records_frame(raw)], how="horizontal")
 
 
-def axis_values(name: str, values: Any, scene: Scene) -> np.ndarray:
+def axis_values(name: str, values: Any, scene: Scene, *, cases: bool = False) -> np.ndarray:
     """One axis' values as the engine's float64 column (a choice's names as their codes). Checks
-    what the engine cannot: the axis exists, its values are numbers (or names) in a 1-D list."""
+    what the engine cannot: the axis exists, its values are numbers (or names) in a 1-D list, by
+    the rule :class:`Scene` applies to one value (:func:`_engine.real`, :func:`_engine.code`).
+    With ``cases``, ``values`` is a cases table's column and an error names its row (``.case``)."""
     if name not in AXES:
         raise ValueError(f"`{name}` is not a sweep axis; allowed axes: {', '.join(AXES)}")
     if name in ("partner_n", "partner_body") and isinstance(scene.partner, ConvexPolygon):
         raise ValueError(f"`{name}` is not a sweep axis for a ConvexPolygon partner (its vertices are fixed)")
     if name in _engine.CHOICES:
-        try:
-            names = np.atleast_1d(np.asarray(values, dtype=object))
-        except (TypeError, ValueError):  # ragged nests of arrays
-            raise TypeError(f"`{name}` must be a name or a 1-D list of names (found {values!r:.80})") from None
-        if names.ndim != 1:
-            raise ValueError(f"require `{name}` a name or a 1-D list of names (found shape {names.shape})")
-        a = np.array([_engine.code(name, v) for v in names], dtype=np.float64)
+        a = _codes(name, values, cases)
     elif name == "n":
-        ints = np.atleast_1d(np.asarray(values))
-        if ints.ndim != 1 or not np.issubdtype(ints.dtype, np.integer):
-            raise TypeError(f"`n` must be an integer or a 1-D array of integers (found {values!r:.80})")
         if isinstance(scene.shape, ConvexPolygon):
             raise ValueError("`n` is not a sweep axis for a ConvexPolygon scene (its vertices are fixed)")
-        a = ints.astype(np.float64)
-
+        a = _engine.integers(name, values, cases=cases)
     else:
-        try:
-            a = np.atleast_1d(np.asarray(values, dtype=np.float64))
-        except (TypeError, ValueError):
-            raise TypeError(f"`{name}` must be a number or a 1-D array of numbers (found {values!r:.80})") from None
+        a = _engine.reals(name, values, cases=cases)
+    a = np.atleast_1d(a)
     if a.ndim != 1:
         raise ValueError(f"require `{name}` a scalar or 1-D array (found shape {a.shape})")
     if a.size == 0:
         raise ValueError(f"require `{name}` non-empty")
     return np.ascontiguousarray(a)
+
+
+def _codes(name: str, values: Any, cases: bool) -> np.ndarray:
+    """A choice axis' names as the engine's codes (an error names the row of a cases table)."""
+    try:
+        names = np.atleast_1d(np.asarray(values, dtype=object))
+    except (TypeError, ValueError):  # ragged nests of arrays
+        raise TypeError(f"`{name}` must be a name or a 1-D list of names (found {values!r:.80})") from None
+    if names.ndim != 1:
+        raise ValueError(f"require `{name}` a name or a 1-D list of names (found shape {names.shape})")
+    out = np.empty(len(names), dtype=np.float64)
+    for i, v in enumerate(names):
+        try:
+            out[i] = _engine.code(name, v)
+        except RestitutionError as err:
+            raise err.at_case(i if cases else None) from None
+    return out
 
 
 def spec_to_dict(spec: SweepSpec, chunk_size: int | None = None, cases_file: str | None = None) -> dict[str, Any]:
