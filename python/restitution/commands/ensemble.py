@@ -33,7 +33,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"require `--n-boot` >= 0 (found {args.n_boot})")
     try:
         result = ensemble_to_dataset(spec, args.out, chunk_size=chunk, threads=args.threads, progress=args.progress,
-                                     resume=args.resume, scheduler=args.scheduler)
+                                     resume=args.resume, scheduler=args.scheduler, wait=args.wait)
     except ImportError as err:
         raise ValueError(str(err)) from None
     except KeyboardInterrupt as err:

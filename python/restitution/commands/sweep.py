@@ -17,6 +17,8 @@ def add_arguments(p: argparse.ArgumentParser, *, kind: str = "sweep") -> None:
     p.add_argument("--out", type=Path, required=True, help="dataset directory (new or empty, or the one to resume)")
     p.add_argument("--resume", action="store_true",
                    help="continue the interrupted sweep in --out (refused if the config changed)")
+    p.add_argument("--wait", action="store_true",
+                   help="if another process is writing --out, wait for it to finish (default: refuse, naming its pid)")
     p.add_argument("--threads", type=int, default=None, help="engine threads (default: all cores)")
     p.add_argument("--chunk-size", type=int, default=None,
                    help="cases per chunk file (default: the config's [sweep] chunk_size, else 8192)")
@@ -38,7 +40,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"require `--threads` >= 1 (found {args.threads})")
     try:
         result = sweep_to_dataset(spec, args.out, chunk_size=chunk, threads=args.threads, progress=args.progress,
-                                  resume=args.resume, scheduler=args.scheduler)
+                                  resume=args.resume, scheduler=args.scheduler, wait=args.wait)
     except ImportError as err:
         raise ValueError(str(err)) from None
     except KeyboardInterrupt as err:

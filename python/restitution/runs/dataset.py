@@ -13,11 +13,14 @@ complete, so a file that exists is whole; each carries its chunk index, case ran
 spec's digest in its Parquet key-value metadata (``restitution.chunk``) along with the package
 version and the spec. Resuming recomputes exactly the chunks without a valid file, after
 checking that the spec is the one in the manifest (else it refuses, naming the first difference).
+
+Reading checks every part against the manifest with the check resume uses
+(:mod:`restitution.runs.store`, footers only), and one process writes a directory at a time
+(:mod:`restitution.runs.lock`: a second writer is refused, naming the first one's pid, or waits).
 """
 
 from __future__ import annotations
 
-import hashlib
 import json
 import os
 import queue
@@ -33,21 +36,16 @@ import polars as pl
 
 from .._core import __version__ as ENGINE_VERSION
 from ._progress import Progress, StopOnInterrupt, want_progress
+from ..errors import RestitutionError
 from ..scene import Scene
+from .lock import LOCK_FILE, WriterLock
+from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, RESUME, DatasetError, check_cases_file, check_rows,
+                    fail, frame_digest, part_files, part_name, part_problem, read_manifest, spec_digest, verified_parts)
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
-FORMAT = "restitution-sweep/1"
-MANIFEST = "manifest.json"
-CASES_FILE = "cases.parquet"
-_PART = re.compile(r"^part-(\d+)\.parquet$")
-_TMP = re.compile(r"^\.part-\d+\.parquet\.(\d+)\.\d+\.tmp$")
-#: Key of the per-file metadata; the spec goes in too unless it is huge (long explicit axes).
-META_KEY = "restitution.chunk"
+_TMP = re.compile(r"^\.(part-\d+\.parquet|cases\.parquet|manifest\.json)\.(\d+)\.\d+\.tmp$")
+#: The spec goes into each part's metadata too unless it is huge (long explicit axes).
 _MAX_SPEC_IN_FILE = 64 * 1024
-
-
-def part_name(index: int) -> str:
-    return f"part-{index:06d}.parquet"
 
 
 @dataclass(frozen=True)
@@ -79,6 +77,7 @@ def sweep_to_dataset(
     progress: bool | None = None,
     resume: bool = False,
     scheduler: Any = None,
+    wait: bool = False,
     **axes: Any,
 ) -> SweepResult:
     """Runs a sweep chunk by chunk into the Parquet dataset directory ``out``.
@@ -103,6 +102,10 @@ def sweep_to_dataset(
     scheduler : str or distributed.Client, optional
         Run the chunks as tasks on a Dask cluster (a scheduler address or a client); the
         files are written here, by this process, as the tasks finish.
+    wait : bool
+        One process writes a dataset directory at a time (a lock on ``out/.writer.lock``,
+        released by the system when the writer ends, even killed). Another writer is refused
+        (``RestitutionError`` naming its pid) unless ``wait``, which waits for it to finish.
 
     Returns
     -------
@@ -117,6 +120,16 @@ def sweep_to_dataset(
     spec = _spec_of(scene, cases, axes)
     out = Path(out)
     n_threads = check_threads(threads)
+    for name, flag in (("resume", resume), ("wait", wait)):
+        if not isinstance(flag, bool):
+            raise RestitutionError(name, repr(flag), "True or False")
+    with WriterLock(out, wait=wait):
+        return _write(spec, out, chunk_size, resume, n_threads, progress, scheduler)
+
+
+def _write(spec: SweepSpec, out: Path, chunk_size: int | None, resume: bool, n_threads: int,
+           progress: bool | None, scheduler: Any) -> SweepResult:
+    """:func:`sweep_to_dataset` once this process holds ``out``'s writer lock."""
     manifest = _open_dataset(spec, out, chunk_size, resume)
     chunk_size = manifest["chunk_size"]
     digest = manifest["spec_sha256"]
@@ -154,24 +167,41 @@ def _open_dataset(spec: SweepSpec, out: Path, chunk_size: int | None, resume: bo
 
     A new directory gets the manifest (and the cases table); an existing sweep is resumed only
     when asked to and only with the same spec (and by default its own chunk size, since which
-    rows a chunk file holds depends on it). Temporary files of dead writers are removed.
+    rows a chunk file holds depends on it). Resuming mends what the spec determines: a manifest
+    whose counts were edited and a damaged cases table are written again. Temporary files of
+    dead writers are removed.
     """
     old = read_manifest(out) if (out / MANIFEST).exists() else None
     if old is not None and not resume:
         raise ValueError(f"`out` {out} already holds a sweep ({MANIFEST}); resume it (--resume, resume=True) "
                          "or choose another directory")
     if chunk_size is None:
-        chunk_size = int(old["chunk_size"]) if old is not None else DEFAULT_CHUNK
+        chunk_size = _old_chunk_size(old) if old is not None else DEFAULT_CHUNK
     chunk_size = check_chunk_size(chunk_size)
     manifest = make_manifest(spec, chunk_size)
     if old is not None:
         check_same_spec(old, manifest, out)
+        counts = ("n_cases", "chunk_size", "n_chunks")
+        if any(old.get(k) != manifest[k] for k in counts):  # edited counts: the spec's are the true ones
+            manifest["created"] = old.get("created", manifest["created"])
+            _write_manifest(out, manifest)
     else:
         _create(out, manifest)
-    if spec.cases is not None and not (out / CASES_FILE).exists():
-        _atomic_write(out / CASES_FILE, lambda tmp: spec.cases.write_parquet(tmp))  # type: ignore[union-attr]
+    if spec.cases is not None:
+        try:
+            check_cases_file(out, manifest)
+        except (ValueError, DatasetError):
+            _atomic_write(out / CASES_FILE, lambda tmp: spec.cases.write_parquet(tmp))  # type: ignore[union-attr]
     _remove_stale_tmp(out)
     return manifest
+
+
+def _old_chunk_size(old: dict[str, Any]) -> Any:
+    """A dataset's chunk size as its spec states it (covered by the digest), else the manifest's count."""
+    spec = old.get("spec")
+    sweep = spec.get("sweep") if isinstance(spec, dict) else None
+    size = sweep.get("chunk_size") if isinstance(sweep, dict) else None
+    return size if size is not None else old.get("chunk_size")
 
 
 class _Tally:
@@ -226,20 +256,14 @@ def _run_pending(spec: SweepSpec, pending: list[Chunk], scheduler: Any, n_thread
 def make_manifest(spec: SweepSpec, chunk_size: int) -> dict[str, Any]:
     """The manifest of ``spec`` cut in chunks of ``chunk_size`` (``created`` aside, a pure function)."""
     body = spec.to_dict(chunk_size, CASES_FILE if spec.cases is not None else None)
-    digest = hashlib.sha256()
-    digest.update(json.dumps(body, sort_keys=True).encode())
-    digest.update(json.dumps(list(spec.axis_names)).encode())
-    digest.update(ENGINE_VERSION.encode())
-    cases_sha = _frame_digest(spec.cases) if spec.cases is not None else None
-    if cases_sha is not None:
-        digest.update(cases_sha.encode())
+    cases_sha = frame_digest(spec.cases) if spec.cases is not None else None
     return {
         "format": FORMAT,
         "restitution_version": ENGINE_VERSION,
         "spec": body,
         "axes": list(spec.axis_names),
         "cases_sha256": cases_sha,
-        "spec_sha256": digest.hexdigest(),
+        "spec_sha256": spec_digest(body, spec.axis_names, ENGINE_VERSION, cases_sha),
         "n_cases": spec.n_cases,
         "chunk_size": chunk_size,
         "n_chunks": spec.n_chunks(chunk_size),
@@ -293,28 +317,6 @@ def _show(v: Any) -> str:
     return s if len(s) <= 80 else s[:77] + "..."
 
 
-def _frame_digest(df: pl.DataFrame) -> str:
-    """A content digest of a cases table (names, dtypes, values; stable across polars versions)."""
-    h = hashlib.sha256()
-    for name in df.columns:
-        col = df[name]
-        h.update(f"{name}:{col.dtype}:".encode())
-        h.update(json.dumps(col.to_list()).encode() if col.dtype == pl.String
-                 else col.is_null().to_numpy().tobytes() + col.fill_null(0).to_numpy().tobytes())
-    return h.hexdigest()
-
-
-def read_manifest(path: str | Path) -> dict[str, Any]:
-    """The manifest of the dataset at ``path``."""
-    p = Path(path) / MANIFEST
-    try:
-        return json.loads(p.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ValueError(f"{path} is not a sweep dataset (no {MANIFEST})") from None
-    except json.JSONDecodeError as err:
-        raise ValueError(f"{p} is not valid JSON ({err})") from None
-
-
 def missing_chunks(path: str | Path) -> list[int]:
     """Chunk indices of the dataset at ``path`` that have no file yet."""
     m = read_manifest(path)
@@ -325,43 +327,75 @@ def missing_chunks(path: str | Path) -> list[int]:
 def scan_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.LazyFrame:
     """The dataset as a lazy frame, rows in case order (chunk files in index order).
 
-    An unfinished dataset raises ``ValueError`` (saying how many chunks are missing) unless
+    Checked before it is returned, from the files' footers and the manifest, never their data
+    (:mod:`restitution.runs.store`, the check a resumed sweep makes): the manifest and the cases
+    table, each part's chunk index, case range and spec digest, and their row counts. A damaged
+    or foreign file raises :class:`~restitution.RestitutionError` naming it and the fix. An
+    unfinished dataset raises ``ValueError`` (saying how many chunks are missing) unless
     ``allow_partial``, which reads the chunks that exist.
     """
     path = Path(path)
-    m = read_manifest(path)
-    parts = _part_files(path)
-    missing = [k for k in range(m["n_chunks"]) if k not in parts]
-    if missing and not allow_partial:
-        raise ValueError(f"dataset {path} is incomplete: {len(missing)} of {m['n_chunks']} chunks missing "
-                         f"(first: {missing[0]}); finish it with --resume, or pass allow_partial=True")
-    files = [str(parts[k]) for k in sorted(parts) if k < m["n_chunks"]]
-    if not files:
-        raise ValueError(f"dataset {path} has no chunk files yet")
-    return pl.scan_parquet(files)
+    m, parts = verified_parts(path, allow_partial=allow_partial)
+    lazy = pl.scan_parquet([str(parts[k]) for k in sorted(parts)])
+    check_rows(parts, m, _collect(parts, lazy.select(pl.len())).item())
+    return lazy
 
 
 def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFrame:
-    """The dataset as one frame, rows in case order (what :func:`restitution.sweep` returns)."""
-    return scan_dataset(path, allow_partial=allow_partial).collect()
+    """The dataset as one frame, rows in case order (what :func:`restitution.sweep` returns).
+
+    Checked as :func:`scan_dataset` checks it (the row counts from the rows read): either the
+    rows that were computed, or a :class:`~restitution.RestitutionError` naming the file at
+    fault and the fix (``--resume`` recomputes a damaged part)."""
+    path = Path(path)
+    m, parts = verified_parts(path, allow_partial=allow_partial)
+    frame = _collect(parts, pl.scan_parquet([str(parts[k]) for k in sorted(parts)]))
+    check_rows(parts, m, frame.height)
+    return frame
 
 
-def _part_files(path: Path) -> dict[int, Path]:
-    out = {}
-    for entry in os.scandir(path):
-        m = _PART.match(entry.name)
-        if m:
-            out[int(m.group(1))] = Path(entry.path)
-    return out
+def _collect(parts: dict[int, Path], lazy: pl.LazyFrame) -> pl.DataFrame:
+    """``lazy.collect()``; a part whose data pages do not read is named (not a bare polars error)."""
+    try:
+        return lazy.collect()
+    except (OSError, pl.exceptions.PolarsError) as err:
+        for k in sorted(parts):
+            try:
+                pl.read_parquet(parts[k])
+            except (OSError, pl.exceptions.PolarsError) as one:
+                raise fail(parts[k], f"its data cannot be read ({' '.join(str(one).split())[:160]})", RESUME) from None
+        raise fail(next(iter(parts.values())).parent, f"the parts cannot be read together ({err})",
+                   "report it: each part reads alone") from None
+
+
+def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFrame:
+    """The dataset as one frame, rows in case order (what :func:`restitution.sweep` returns).
+
+    Checked as :func:`scan_dataset` checks it, and each part's row count against its chunk's:
+    either the rows that were computed, or a :class:`~restitution.RestitutionError` naming the
+    file at fault and the fix (``--resume`` recomputes a damaged part)."""
+    path = Path(path)
+    m, parts = verified_parts(path, allow_partial=allow_partial)
+    files = [str(parts[k]) for k in sorted(parts)]
+    try:
+        frame = pl.scan_parquet(files).collect()
+    except (OSError, pl.exceptions.PolarsError) as err:
+        raise _unreadable(parts, err) from None
+    check_rows(parts, m, frame.height)
+    return frame
+
+
+_part_files = part_files  # the name other modules import
 
 
 def _create(out: Path, manifest: dict[str, Any]) -> None:
-    if out.exists() and not out.is_dir():
-        raise ValueError(f"`out` {out} exists and is not a directory")
-    if out.is_dir() and any(out.iterdir()):
+    if any(name != LOCK_FILE for name in os.listdir(out)):
         raise ValueError(f"`out` {out} exists, is not empty and holds no sweep ({MANIFEST}); "
                          "choose a new or empty directory")
-    out.mkdir(parents=True, exist_ok=True)
+    _write_manifest(out, manifest)
+
+
+def _write_manifest(out: Path, manifest: dict[str, Any]) -> None:
     text = json.dumps(manifest, indent=1)
     _atomic_write(out / MANIFEST, lambda tmp: Path(tmp).write_text(text, encoding="utf-8"))
 
@@ -377,20 +411,15 @@ def _file_metadata(manifest: dict[str, Any]) -> dict[str, str]:
 
 
 def _valid_part(out: Path, c: Chunk, digest: str) -> bool:
-    """A chunk file is valid when its footer reads and its metadata and row count match ``c``."""
+    """Whether chunk ``c``'s file is valid (the one check readers make too,
+    :func:`~restitution.runs.store.part_problem`, with its row count); an invalid file is removed."""
     path = out / part_name(c.index)
     if not path.exists():
         return False
-    try:
-        info = json.loads(pl.read_parquet_metadata(path)[META_KEY])
-        rows = pl.scan_parquet(path).select(pl.len()).collect().item()
-        ok = (info["spec_sha256"] == digest and info["index"] == c.index and info["start"] == c.start
-              and info["stop"] == c.stop and rows == c.stop - c.start)
-    except (OSError, KeyError, TypeError, ValueError, pl.exceptions.PolarsError):
-        ok = False
-    if not ok:
-        path.unlink()  # recomputed below; a stale file must not be read back as part of the sweep
-    return ok
+    if part_problem(path, c.index, c.start, c.stop, digest, count_rows=True) is None:
+        return True
+    path.unlink()  # recomputed below; a stale file must not be read back as part of the sweep
+    return False
 
 
 def _write_part(out: Path, c: Chunk, frame: pl.DataFrame, digest: str, meta: dict[str, str]) -> None:
@@ -415,7 +444,7 @@ def _remove_stale_tmp(out: Path) -> None:
     """Temporary files of writers that died (killed mid-write); a live writer's are left alone."""
     for entry in os.scandir(out):
         m = _TMP.match(entry.name)
-        if m and not _pid_alive(int(m.group(1))):
+        if m and not _pid_alive(int(m.group(2))):
             Path(entry.path).unlink(missing_ok=True)
 
 

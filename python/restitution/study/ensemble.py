@@ -223,7 +223,7 @@ def ensemble_to_dataset(scene: Scene | EnsembleSpec, out: str | Path, n: int | N
                         cases: pl.DataFrame | None = None, on_refused: str = "raise", sampling: str = "random",
                         chunk_size: int | None = None,
                         threads: int | None = None, progress: bool | None = None, resume: bool = False,
-                        scheduler: Any = None, **axes: Any) -> SweepResult:
+                        scheduler: Any = None, wait: bool = False, **axes: Any) -> SweepResult:
     """:func:`ensemble`, streamed chunk by chunk to the Parquet dataset ``out`` (flat memory),
     resumable, on threads or a Dask cluster: :func:`restitution.sweep_to_dataset`'s layout,
     with ``n``, ``seed`` and the distributions in the manifest. Read it back with
@@ -239,7 +239,7 @@ def ensemble_to_dataset(scene: Scene | EnsembleSpec, out: str | Path, n: int | N
         spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused,
                             sampling=sampling)
     return sweep_to_dataset(spec, out, chunk_size=chunk_size, threads=threads, progress=progress, resume=resume,
-                            scheduler=scheduler)
+                            scheduler=scheduler, wait=wait)
 
 
 def read_ensemble(path: str | Path, *, allow_partial: bool = False) -> Ensemble:
