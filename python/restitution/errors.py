@@ -60,4 +60,13 @@ class RestitutionTypeError(RestitutionError, TypeError):
     table), and a ``TypeError``, so ``except TypeError`` keeps working."""
 
 
-__all__ = ["RestitutionError", "RestitutionTypeError"]
+class RestitutionFileError(RestitutionError):
+    """A file this package wrote (a dataset's manifest, part or cases table, a collision table)
+    that is unreadable, truncated, foreign or edited: ``.parameter`` is ``"path"``, ``.value``
+    the file, ``.expected`` what is wrong with it and how to fix it. Shown as ``FILE: WHAT; FIX``."""
+
+    def __str__(self) -> str:
+        return f"{self.value}: {self.expected}"
+
+
+__all__ = ["RestitutionError", "RestitutionFileError", "RestitutionTypeError"]

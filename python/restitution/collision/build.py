@@ -147,6 +147,18 @@ def refine(ev: Evaluator, grid: dict[str, np.ndarray], *, tol: float, max_rounds
     return grid, rough_cells(grid, rough), info
 
 
+def verdict(stopped: str, error: pl.DataFrame, tol: float) -> str:
+    """Why refinement stopped, as the stated error shows it: ``"converged"`` only where every
+    output's largest error at the check points is within ``tol``. Refinement that found nothing
+    more to split with a larger error is ``"rough"`` when the excess lies in rough cells only,
+    else ``"unresolved"`` (the midpoint test was satisfied on too coarse a grid: give more
+    starting nodes). ``"max_rounds"`` and ``"max_nodes"`` stay as they are."""
+    if stopped != "converged" or float(error["max_abs"].max()) <= tol:
+        return stopped
+    smooth = error["max_abs_smooth"].max()
+    return "rough" if smooth is None or float(smooth) <= tol else "unresolved"  # type: ignore[arg-type]
+
+
 def _splits(ev: Evaluator, axis: str, edges: list[tuple[Edge, float]], tol: float) -> tuple[np.ndarray, set[Edge]]:
     """(midpoints of the intervals to split, the rough edges) from the edges over ``tol``.
 

@@ -36,10 +36,12 @@ import polars as pl
 
 from .. import _engine
 from .._core import __version__ as ENGINE_VERSION
-from ..errors import RestitutionError
+from ..errors import RestitutionError, RestitutionFileError
 from ..runs import config as _config
 from ..runs.distributions import Distribution, Uniform, check_seed, from_dict
+from ..runs._progress import want_progress
 from ..runs.ensemble import SAMPLING, _Points
+from ..runs.sweep import check_threads
 from ..scene import Scene
 from ..shapes import ConvexPolygon, RegularPolygon
 from . import build as _build
@@ -101,13 +103,19 @@ class CollisionOperator:
         tol : float
             Target absolute error of the interpolated mean outputs (v_n' / |v|, v_t' / |v|, omega' r / |v|).
         max_rounds, max_nodes : int
-            Refinement stops after this many rounds or before the grid exceeds this many nodes.
+            Refinement stops after this many rounds (>= 0) or before the grid exceeds this many
+            nodes (>= 1). ``info["stopped"]`` says why it stopped: ``"converged"`` (every
+            output's stated error within ``tol``), ``"rough"`` (nothing left to split, the error
+            above ``tol`` only in rough cells), ``"unresolved"`` (nothing left to split, yet the
+            error above ``tol`` in smooth cells: give more starting nodes), ``"max_rounds"`` or
+            ``"max_nodes"``.
         n_check : int
             Validation points (not nodes) at which the stated error is measured.
         threads, progress :
             As for :func:`restitution.sweep`.
         """
         vary_d, n_draws = _check_build(scene, vary, n, tol, n_check)
+        _check_settings(max_rounds=max_rounds, max_nodes=max_nodes, threads=threads, progress=progress)
         seed = check_seed(seed)
         spin = _engine.reals("omega_in", omega_in) * scene.r / scene.v
         grid = _build.initial_grid(theta_deg, spin, scene.v if v is None else v)
@@ -117,7 +125,7 @@ class CollisionOperator:
         grid, rough, info = _build.refine(ev, grid, tol=tol, max_rounds=max_rounds, max_nodes=max_nodes)
         table = ev.table(grid)
         error = _build.validate(ev, table, rough, _build.check_points(grid, n_check, seed))
-        info.update(impacts=ev.impacts, timed_out=ev.timed_out, n_check=n_check, sampling=sampling)
+        info.update(stopped=_build.verdict(info["stopped"], error, tol), impacts=ev.impacts, timed_out=ev.timed_out, n_check=n_check, sampling=sampling)
         return cls(table, scene=scene, vary=vary_d, seed=seed, tol=tol, error=error, rough=rough, info=info)
 
     def __call__(self, v_n: Any, v_t: Any, omega: Any, rng: Any = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -169,23 +177,42 @@ class CollisionOperator:
 
     @classmethod
     def load(cls, path: str | Path) -> CollisionOperator:
-        """Reads a table written by :meth:`save`, checking its format and digest."""
+        """Reads a table written by :meth:`save`, checking its format and digest.
+
+        Raises :class:`~restitution.errors.RestitutionFileError` (a ``RestitutionError``)
+        naming ``path`` for a file that is unreadable, truncated, foreign or edited."""
         path = Path(path)
+        fix = "save the operator again (op.save) or rebuild it (CollisionOperator.build)"
         try:
             meta = json.loads(pl.read_parquet_metadata(path)[META_KEY])
-        except KeyError:
-            raise ValueError(f"{path} is not a collision operator (no `{META_KEY}` metadata)") from None
-        if meta.get("format") != FORMAT:
-            raise ValueError(f"{path}: format {meta.get('format')!r}, this package reads {FORMAT!r}")
-        frame = pl.read_parquet(path)
-        shape = tuple(meta["shape"])
-        values = frame.select(OUTPUTS).to_numpy().reshape(*shape, len(OUTPUTS))
-        if _digest(meta, values) != meta["sha256"]:
-            raise ValueError(f"{path}: the table does not match its sha256 digest (damaged or edited)")
+            if not isinstance(meta, dict) or meta.get("format") != FORMAT:
+                found = meta.get("format") if isinstance(meta, dict) else meta
+                raise RestitutionFileError("path", str(path), f"its format is {found!r:.80}, this package reads "
+                                           f"{FORMAT!r}; {fix}")
+            frame = pl.read_parquet(path)
+            values = frame.select(OUTPUTS).to_numpy().reshape(*tuple(meta["shape"]), len(OUTPUTS))
+            if _digest(meta, values) != meta["sha256"]:
+                raise RestitutionFileError("path", str(path), f"the table does not match its sha256 digest "
+                                           f"(damaged or edited); {fix}")
+            return cls._from(meta, values, str(path))
+        except RestitutionFileError:
+            raise
+        except KeyError as err:
+            problem = (f"it is not a collision operator (no `{META_KEY}` metadata)" if err.args == (META_KEY,)
+                       else f"its metadata lacks {err}")
+            raise RestitutionFileError("path", str(path), f"{problem}; {fix}") from None
+        except (OSError, ValueError, TypeError, IndexError, pl.exceptions.PolarsError) as err:
+            problem = " ".join(str(err).split())[:160]
+            raise RestitutionFileError("path", str(path), f"not a collision operator this package can read, "
+                                       f"unreadable, truncated or foreign ({type(err).__name__}: {problem}); "
+                                       f"{fix}") from None
+
+    @classmethod
+    def _from(cls, meta: dict[str, Any], values: np.ndarray, source: str) -> CollisionOperator:
+        """The operator of a file's checked metadata and values."""
         grid = {a: np.asarray(meta["grid"][a], dtype=np.float64) for a in AXES}
         table = Table(grid["theta_deg"], grid["spin"], grid["v"], values, meta["r"])
-        fail = _config.failer(str(path))
-        scene = _config._scene({**meta["scene"], "preset": "default"}, fail)
+        scene = _config._scene({**meta["scene"], "preset": "default"}, _config.failer(source))
         return cls(table, scene=scene, vary={k: from_dict(d) for k, d in meta["vary"].items()}, seed=meta["seed"],
                    tol=meta["tol"], error=pl.DataFrame(meta["error"], infer_schema_length=None),
                    rough=_unflatten(meta["rough_cells"], table), info=meta["info"])
@@ -236,10 +263,9 @@ def _check_build(scene: Scene, vary: Mapping[str, Any] | None, n: int | None, to
     """The drawn parameters and draws per node; refuses what the operator cannot honour."""
     if not isinstance(scene, Scene):
         raise TypeError(f"`scene` must be a restitution.Scene (found {type(scene).__name__})")
-    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+    if not (math.isfinite(_engine.real("tol", tol)) and tol > 0):
         raise RestitutionError("tol", tol, "finite and > 0 (absolute error of v_n' / |v|, v_t' / |v|, omega' r / |v|)")
-    if isinstance(n_check, bool) or not isinstance(n_check, int) or n_check < 2:
-        raise RestitutionError("n_check", repr(n_check), "an integer >= 2")
+    _engine.integer("n_check", n_check, 2)
     vary_d = {k: from_dict(d, f"vary.{k}") for k, d in (vary or {}).items()}
     for name in ("theta_deg", "omega_in", "v"):
         if name in vary_d:
@@ -249,6 +275,14 @@ def _check_build(scene: Scene, vary: Mapping[str, Any] | None, n: int | None, to
         raise RestitutionError("n", repr(n), "an integer >= 1 (draws per node), and 1 unless `vary` draws something")
     _check_mirror(scene, vary_d)
     return vary_d, n_draws
+
+
+def _check_settings(*, max_rounds: Any, max_nodes: Any, threads: Any, progress: Any) -> None:
+    """The refinement's limits and the run's settings, refused by name before anything runs."""
+    _engine.integer("max_rounds", max_rounds, 0)
+    _engine.integer("max_nodes", max_nodes, 1)
+    check_threads(threads)
+    want_progress(progress, 0)
 
 
 def _check_mirror(scene: Scene, vary: Mapping[str, Distribution]) -> None:

@@ -9,6 +9,8 @@ import time
 from types import FrameType, TracebackType
 from typing import Any
 
+from ..errors import RestitutionTypeError
+
 
 class Progress:
     """tqdm when installed, else a one-line counter on stderr; does nothing when disabled.
@@ -58,7 +60,9 @@ def want_progress(progress: bool | None, total: int) -> bool:
     """Default: a bar for sweeps of 50 000 impacts or more when stderr is a terminal."""
     if progress is None:
         return total >= 50_000 and sys.stderr.isatty()
-    return bool(progress)
+    if not isinstance(progress, bool):
+        raise RestitutionTypeError("progress", f"{type(progress).__name__} {progress!r:.80}", "True, False or None")
+    return progress
 
 
 class StopOnInterrupt:

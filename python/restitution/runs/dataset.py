@@ -39,7 +39,7 @@ from ._progress import Progress, StopOnInterrupt, want_progress
 from ..errors import RestitutionError
 from ..scene import Scene
 from .lock import LOCK_FILE, WriterLock
-from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, RESUME, DatasetError, check_cases_file, check_rows,
+from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, RESUME, check_cases_file, check_rows,
                     fail, frame_digest, part_files, part_name, part_problem, read_manifest, spec_digest, verified_parts)
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
@@ -190,7 +190,7 @@ def _open_dataset(spec: SweepSpec, out: Path, chunk_size: int | None, resume: bo
     if spec.cases is not None:
         try:
             check_cases_file(out, manifest)
-        except (ValueError, DatasetError):
+        except ValueError:  # a RestitutionFileError too
             _atomic_write(out / CASES_FILE, lambda tmp: spec.cases.write_parquet(tmp))  # type: ignore[union-attr]
     _remove_stale_tmp(out)
     return manifest

@@ -13,8 +13,8 @@ range and the spec's digest. Everything here reads footers and the manifest, nev
   parts at once against the manifest (:func:`check_rows`);
 - :func:`check_cases_file`: the cases table is whole and is the one the manifest names.
 
-A failure raises :class:`DatasetError` (a :class:`~restitution.RestitutionError`) naming the
-file, what is wrong and the fix.
+A failure raises :class:`~restitution.errors.RestitutionFileError` (a
+:class:`~restitution.RestitutionError`) naming the file, what is wrong and the fix.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from typing import Any
 
 import polars as pl
 
-from ..errors import RestitutionError
+from ..errors import RestitutionFileError
 
 FORMAT = "restitution-sweep/1"
 MANIFEST = "manifest.json"
@@ -41,19 +41,9 @@ _PART = re.compile(r"^part-(\d+)\.parquet$")
 RESUME = "resume the sweep (restitution sweep CONFIG --out DIR --resume, or resume=True), which recomputes it"
 
 
-class DatasetError(RestitutionError):
-    """A dataset file that is damaged, foreign or edited: ``.parameter`` is ``"path"``,
-    ``.value`` the file, ``.expected`` what is wrong and how to fix it."""
-
-    def __init__(self, parameter: str, value: Any, expected: str, case: int | None = None) -> None:
-        super().__init__(parameter, value, expected, case)
-
-    def __str__(self) -> str:
-        return f"{self.value}: {self.expected}"
-
-
-def fail(path: Path, problem: str, fix: str) -> DatasetError:
-    return DatasetError("path", str(path), f"{problem}; {fix}")
+def fail(path: Path, problem: str, fix: str) -> RestitutionFileError:
+    """The error of a damaged, foreign or edited file: ``PATH: PROBLEM; FIX``."""
+    return RestitutionFileError("path", str(path), f"{problem}; {fix}")
 
 
 def part_name(index: int) -> str:
@@ -244,5 +234,5 @@ def verified_parts(path: Path, *, allow_partial: bool) -> tuple[dict[str, Any], 
     return m, parts
 
 
-__all__ = ["CASES_FILE", "DatasetError", "FORMAT", "MANIFEST", "META_KEY", "check_manifest", "part_problem",
+__all__ = ["CASES_FILE", "FORMAT", "MANIFEST", "META_KEY", "check_manifest", "part_problem",
            "read_manifest", "verified_parts"]

@@ -41,6 +41,11 @@ _PER_VALUE = ("theta_deg", "omega_in", "v", "phi0_deg")
 #: :class:`Scene`, so a new field is a key (and part of a dataset's digest) without editing this file.
 SCENE_KEYS = tuple(f.name for f in dataclasses.fields(Scene) if f.name not in ("shape", "partner"))
 
+#: Most cases a sweep or an ensemble returns in memory: one row is about 300 bytes, so this is
+#: about 15 GB. Beyond it they are refused before any work (10^12 cases would take minutes of
+#: checks, then days, then fail for memory): stream them with ``sweep_to_dataset``.
+MAX_IN_MEMORY_CASES = 50_000_000
+
 #: Most combinations checked before a sweep starts; beyond it each value is checked alone and
 #: the engine still refuses a bad combination when its chunk runs, naming the case.
 _CHECK_MAX = 200_000
@@ -281,9 +286,17 @@ def shape_to_dict(shape: Any) -> dict[str, Any]:
     return {"kind": "convex_polygon", "vertices": [list(v) for v in shape.vertices], "phi0_deg": float(shape.phi0_deg)}
 
 
+def check_in_memory(n_cases: int, parameter: str) -> None:
+    """Refuses more than :data:`MAX_IN_MEMORY_CASES` cases returned as one frame, naming ``parameter``."""
+    if n_cases > MAX_IN_MEMORY_CASES:
+        raise RestitutionError(parameter, f"{n_cases:,} cases", f"at most {MAX_IN_MEMORY_CASES:,} cases in memory "
+                               "(about 300 bytes each); stream them to disk with rs.sweep_to_dataset "
+                               "(rs.ensemble_to_dataset for an ensemble)")
+
+
 def check_chunk_size(chunk_size: Any) -> int:
     if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
-        raise ValueError(f"require `chunk_size` an integer >= 1 (found {chunk_size!r})")
+        raise RestitutionError("chunk_size", repr(chunk_size), "an integer >= 1")
     return int(chunk_size)
 
 
@@ -298,7 +311,7 @@ def check_threads(threads: Any) -> int:
         return 0
     if (isinstance(threads, bool) or not isinstance(threads, (int, np.integer))
             or not 1 <= threads <= MAX_THREADS):
-        raise ValueError(f"require `threads` an integer in [1, {MAX_THREADS}] (found {threads!r})")
+        raise RestitutionError("threads", repr(threads), f"an integer in [1, {MAX_THREADS}]")
     return int(threads)
 
 
@@ -356,6 +369,7 @@ def run_in_memory(spec: SweepSpec, *, threads: int | None = None, progress: bool
     """Runs every case of ``spec`` chunk by chunk (progress between chunks) into one frame."""
     n_threads = check_threads(threads)
     size = check_chunk_size(chunk_size if chunk_size is not None else DEFAULT_CHUNK)
+    check_in_memory(spec.n_cases, " x ".join(spec.axis_names))
     bar = Progress(spec.n_cases, enabled=want_progress(progress, spec.n_cases))
     parts = []
     try:
