@@ -28,6 +28,8 @@ how many were refused.
 from __future__ import annotations
 
 import numbers
+import sys
+import time
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -38,6 +40,7 @@ from .. import _engine
 from ..errors import RestitutionError
 from ..scene import ConvexPolygon, Scene
 from . import config as _config
+from ._progress import Progress, want_progress
 from .distributions import Choice, Distribution, check_seed, from_dict
 from .sweep import AXES, SweepSpec, axis_values
 
@@ -48,6 +51,16 @@ ON_REFUSED = ("raise", "skip")
 SAMPLING = ("random", "stratified")
 #: Cases probed per engine call in the up-front check (a chunk's worth: memory stays a chunk's).
 _CHECK_BLOCK = 8192
+#: An up-front check estimated (from its first block) to take longer than this says so first.
+LONG_CHECK_S = 10.0
+
+
+def _duration(seconds: float) -> str:
+    """A duration in the unit that reads best (s, min, h, days, years)."""
+    for unit, size in (("years", 365.25 * 86400), ("days", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:,.1f} {unit}"
+    return f"{seconds:,.0f} s"
 
 
 class _Points(SweepSpec):
@@ -86,11 +99,19 @@ class EnsembleSpec(SweepSpec):
         Independent draws, or stratified ones (each parameter's n draws one per stratum of
         probability 1 / n; the mean over them converges much faster, the bootstrap intervals of
         :meth:`Ensemble.summary` are then conservative).
+    max_cases : int, optional
+        Refuse (naming ``n``) more cases than this, before any work (the in-memory ensemble's
+        :data:`~restitution.runs.sweep.MAX_IN_MEMORY_CASES`).
+    progress : bool, optional
+        A progress line for the up-front check of every case (``on_refused="raise"``); by
+        default shown on a terminal when the first block's rate says it takes over
+        :data:`LONG_CHECK_S`, after a line with the estimate.
     """
 
     def __init__(self, scene: Scene, *, n: int, vary: Mapping[str, Any], seed: int,
                  axes: Mapping[str, Any] | None = None, cases: pl.DataFrame | None = None,
-                 on_refused: str = "raise", sampling: str = "random") -> None:
+                 on_refused: str = "raise", sampling: str = "random", max_cases: int | None = None,
+                 progress: bool | None = None) -> None:
         if not isinstance(scene, Scene):
             raise TypeError(f"`scene` must be a restitution.Scene (found {type(scene).__name__})")
         if isinstance(n, bool) or not isinstance(n, numbers.Integral) or n < 1:
@@ -116,8 +137,13 @@ class EnsembleSpec(SweepSpec):
         self.axes = self.points.axes
         self.n_points: int = self.points.n_cases
         self.n_cases = self.n_points * self.n_draws
+        if max_cases is not None and self.n_cases > max_cases:
+            raise RestitutionError("n", self.n_draws, f"such that points x n is at most {max_cases:,} cases in "
+                                   f"memory (here {self.n_points:,} points x n = {self.n_cases:,}); stream them "
+                                   "to disk with rs.ensemble_to_dataset, or draw fewer")
+        want_progress(progress, 0)  # refused now if it is not True, False or None
         if on_refused == "raise":
-            self._check_all()
+            self._check_all(progress)
 
     @property
     def point_names(self) -> tuple[str, ...]:
@@ -189,20 +215,41 @@ class EnsembleSpec(SweepSpec):
         refused = pl.Series("refused", [reasons.get(k) for k in range(m)], dtype=pl.String)
         return pl.concat([shown, records, refused.to_frame()], how="horizontal")
 
-    def _check_all(self) -> None:
-        """Every (point, draw) case against the engine's rules, before anything runs (streamed)."""
+    def _check_all(self, progress: bool | None) -> None:
+        """Every (point, draw) case against the engine's rules, before anything runs (streamed,
+        a block at a time; Ctrl-C stops it between blocks or inside one). When the first block's
+        rate says it takes long, a line says how long, then a progress line counts the cases."""
         vertices, base = self.scene.template_vertices(), self.scene.engine_values()
         first: RestitutionError | None = None
         count = 0
-        for start in range(0, self.n_cases, _CHECK_BLOCK):
-            stop = min(start + _CHECK_BLOCK, self.n_cases)
-            per_case = self.engine_inputs(start, stop)
-            bad = refused_cases(_engine.columns(base, per_case, stop - start), vertices, keep_errors=True)
-            if bad and first is None:
-                first = bad[0][2].at_case(start + bad[0][0])
-            count += len(bad)
+        bar: Progress | None = None
+        t0 = time.perf_counter()
+        try:
+            for start in range(0, self.n_cases, _CHECK_BLOCK):
+                stop = min(start + _CHECK_BLOCK, self.n_cases)
+                per_case = self.engine_inputs(start, stop)
+                bad = refused_cases(_engine.columns(base, per_case, stop - start), vertices, keep_errors=True)
+                if bad and first is None:
+                    first = bad[0][2].at_case(start + bad[0][0])
+                count += len(bad)
+                if bar is None:  # after the first block, whose rate estimates the whole check
+                    bar = self._check_progress(stop, time.perf_counter() - t0, progress)
+                bar.update(stop - start)
+        finally:
+            if bar is not None:
+                bar.close()
         if first is not None:
             raise self._advise(first, count)
+
+    def _check_progress(self, done: int, seconds: float, progress: bool | None) -> Progress:
+        """The check's progress line (disabled when short, or not asked for), from its first block."""
+        estimate = seconds * self.n_cases / max(done, 1)
+        show = want_progress(progress, self.n_cases) if progress is not None else (
+            estimate > LONG_CHECK_S and sys.stderr.isatty())
+        if show and estimate > LONG_CHECK_S:
+            print(f"checking {self.n_cases:,} cases before running any (on_refused=\"raise\"): about "
+                  f"{_duration(estimate)} at this rate; Ctrl-C stops it", file=sys.stderr)
+        return Progress(self.n_cases, done=0, enabled=show)
 
     def _advise(self, err: RestitutionError, count: int | None) -> RestitutionError:
         """The engine's refusal, with the draw it came from and what to do about it."""

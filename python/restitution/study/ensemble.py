@@ -35,7 +35,7 @@ import polars as pl
 
 from ..runs.dataset import SweepResult, _part_files, read_manifest, scan_dataset, sweep_to_dataset
 from ..runs.ensemble import EnsembleSpec
-from ..runs.sweep import run_in_memory
+from ..runs.sweep import MAX_IN_MEMORY_CASES, run_in_memory
 from ..scene import Scene
 from . import stats
 
@@ -213,7 +213,7 @@ def ensemble(scene: Scene, n: int, *, vary: Mapping[str, Any], seed: int, cases:
     Ensemble
     """
     spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused,
-                        sampling=sampling)
+                        sampling=sampling, max_cases=MAX_IN_MEMORY_CASES, progress=progress)
     frame = run_in_memory(spec, threads=threads, progress=progress, chunk_size=chunk_size)
     return Ensemble(frame, point_names=spec.point_names, vary=spec.vary, n=spec.n_draws, seed=spec.seed)
 
@@ -237,7 +237,7 @@ def ensemble_to_dataset(scene: Scene | EnsembleSpec, out: str | Path, n: int | N
         if n is None or vary is None or seed is None:
             raise ValueError("require `n`, `vary` and `seed` with a scene")
         spec = EnsembleSpec(scene, n=n, vary=vary, seed=seed, axes=axes, cases=cases, on_refused=on_refused,
-                            sampling=sampling)
+                            sampling=sampling, progress=progress)
     return sweep_to_dataset(spec, out, chunk_size=chunk_size, threads=threads, progress=progress, resume=resume,
                             scheduler=scheduler, wait=wait)
 
