@@ -46,13 +46,15 @@ def dataset(pristine: tuple[Path, pl.DataFrame], tmp_path: Path) -> Path:
     return Path(shutil.copytree(pristine[0], tmp_path / "d"))
 
 
-def _refused(path: Path, *fragments: str) -> rs.RestitutionError:
+def _refused(path: Path, *fragments: str, by_scan: bool = True) -> rs.RestitutionError:
+    """``read_dataset``'s refusal (and ``scan_dataset``'s, which reads footers only)."""
     with pytest.raises(rs.RestitutionError) as err:
         read_dataset(path)
     for text in fragments:
         assert text in str(err.value), (text, str(err.value))
-    with pytest.raises(rs.RestitutionError):
-        scan_dataset(path).collect()
+    if by_scan:
+        with pytest.raises(rs.RestitutionError):
+            scan_dataset(path)
     return err.value
 
 
@@ -220,3 +222,15 @@ def test_a_second_writer_asked_to_wait_writes_nothing_twice(tmp_path: Path,
     assert f"waiting for process pid {proc.pid}" in captured.err
     assert "wrote 0, kept 10" in captured.out  # it ran once the first had written all 10 chunks, once each
     assert_frame_equal(read_dataset(out), _in_memory(cfg), check_exact=True)
+
+
+def test_a_part_with_damaged_data_pages_is_named(dataset: Path, pristine: tuple[Path, pl.DataFrame]) -> None:
+    part = _part(dataset, 5)
+    data = bytearray(part.read_bytes())
+    data[64:4096] = bytes(4096 - 64)  # the first data pages zeroed, the footer intact (a disk fault)
+    part.write_bytes(bytes(data))
+    _refused(dataset, "part-000005.parquet", "data cannot be read", "delete it and resume", by_scan=False)
+    with pytest.raises(pl.exceptions.ComputeError):  # a lazy frame's data are read by its collect
+        scan_dataset(dataset).collect()
+    part.unlink()
+    _resume_mends(dataset, pristine[1])

@@ -123,3 +123,26 @@ def test_load_gives_back_the_saved_table(saved: Path) -> None:
     op = rs.CollisionOperator.load(saved)
     again = rs.CollisionOperator.load(op.save(saved.with_name("again.parquet")))
     assert np.array_equal(op.table.values, again.table.values) and op.info == again.info
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda ens: ens.summary(seed=-1), "seed"),
+    (lambda ens: ens.summary("e_n"), "quantities"),
+    (lambda ens: ens.summary(n_boot="x"), "n_boot"),
+], ids=["seed", "quantities", "n_boot"])
+def test_an_ensemble_summary_refuses_its_settings_by_name(call: Any, name: str) -> None:
+    ens = rs.ensemble(SCENE, 8, vary={"mu": rs.Uniform(0.0, 1.0)}, seed=1, theta_deg=[30.0])
+    with pytest.raises(ValueError, match=f"`{name}`"):
+        call(ens)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda d: rs.simulate(SCENE, 30.0, trace="no"), "trace"),
+    (lambda d: rs.read_dataset(d, allow_partial="yes"), "allow_partial"),
+], ids=["trace", "allow_partial"])
+def test_boolean_settings_take_booleans_only(tmp_path: Path, call: Any, name: str) -> None:
+    d = tmp_path / "d"
+    rs.sweep_to_dataset(SCENE, d, theta_deg=[30.0, 60.0])
+    with pytest.raises(rs.RestitutionError) as err:
+        call(d)
+    assert err.value.parameter == name

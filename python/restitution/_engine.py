@@ -38,6 +38,14 @@ OPTIONAL = {"kn": "> 0", "cn": ">= 0", "kt": "> 0", "nu": "in (-1, 0.5]", "plate
 FLAGS = ("error_estimate",)
 
 
+def boolean(name: str, value: Any) -> bool:
+    """A setting that is True or False (``trace``, ``resume``, ``allow_partial``): nothing else,
+    since ``bool("no")`` is True."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise RestitutionTypeError(name, _found(value), "True or False")
+    return bool(value)
+
+
 def flag(name: str, value: Any) -> float:
     """A flag (bool, or the engine's 0 / 1) as 0.0 or 1.0."""
     if isinstance(value, (bool, np.bool_)) or (isinstance(value, numbers.Real) and value in (0, 1)):

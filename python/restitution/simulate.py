@@ -139,6 +139,7 @@ def simulate(scene: Scene, theta_deg: float, omega_in: float = 0.0, partner_omeg
     theta = _engine.real("theta_deg", theta_deg)
     omega = _engine.real("omega_in", omega_in)
     partner_omega = _engine.real("partner_omega_in", partner_omega_in)
+    trace = _engine.boolean("trace", trace)
     row = _engine.with_values(scene._engine_row(), theta_deg=theta, omega_in=omega, partner_omega_in=partner_omega)
     try:
         if trace:

@@ -153,10 +153,10 @@ def verdict(stopped: str, error: pl.DataFrame, tol: float) -> str:
     more to split with a larger error is ``"rough"`` when the excess lies in rough cells only,
     else ``"unresolved"`` (the midpoint test was satisfied on too coarse a grid: give more
     starting nodes). ``"max_rounds"`` and ``"max_nodes"`` stay as they are."""
-    if stopped != "converged" or float(error["max_abs"].max()) <= tol:
+    if stopped != "converged" or error["max_abs"].to_numpy().max() <= tol:
         return stopped
-    smooth = error["max_abs_smooth"].max()
-    return "rough" if smooth is None or float(smooth) <= tol else "unresolved"  # type: ignore[arg-type]
+    smooth = error["max_abs_smooth"].drop_nulls().to_numpy()
+    return "rough" if smooth.size == 0 or smooth.max() <= tol else "unresolved"
 
 
 def _splits(ev: Evaluator, axis: str, edges: list[tuple[Edge, float]], tol: float) -> tuple[np.ndarray, set[Edge]]:

@@ -36,10 +36,10 @@ import polars as pl
 
 from .._core import __version__ as ENGINE_VERSION
 from ._progress import Progress, StopOnInterrupt, want_progress
-from ..errors import RestitutionError
+from .. import _engine
 from ..scene import Scene
 from .lock import LOCK_FILE, WriterLock
-from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, RESUME, check_cases_file, check_rows,
+from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, check_cases_file, check_rows,
                     fail, frame_digest, part_files, part_name, part_problem, read_manifest, spec_digest, verified_parts)
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
@@ -120,9 +120,7 @@ def sweep_to_dataset(
     spec = _spec_of(scene, cases, axes)
     out = Path(out)
     n_threads = check_threads(threads)
-    for name, flag in (("resume", resume), ("wait", wait)):
-        if not isinstance(flag, bool):
-            raise RestitutionError(name, repr(flag), "True or False")
+    resume, wait = _engine.boolean("resume", resume), _engine.boolean("wait", wait)
     with WriterLock(out, wait=wait):
         return _write(spec, out, chunk_size, resume, n_threads, progress, scheduler)
 
@@ -335,7 +333,7 @@ def scan_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.LazyFra
     ``allow_partial``, which reads the chunks that exist.
     """
     path = Path(path)
-    m, parts = verified_parts(path, allow_partial=allow_partial)
+    m, parts = verified_parts(path, allow_partial=_engine.boolean("allow_partial", allow_partial))
     lazy = pl.scan_parquet([str(parts[k]) for k in sorted(parts)])
     check_rows(parts, m, _collect(parts, lazy.select(pl.len())).item())
     return lazy
@@ -348,7 +346,7 @@ def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFra
     rows that were computed, or a :class:`~restitution.RestitutionError` naming the file at
     fault and the fix (``--resume`` recomputes a damaged part)."""
     path = Path(path)
-    m, parts = verified_parts(path, allow_partial=allow_partial)
+    m, parts = verified_parts(path, allow_partial=_engine.boolean("allow_partial", allow_partial))
     frame = _collect(parts, pl.scan_parquet([str(parts[k]) for k in sorted(parts)]))
     check_rows(parts, m, frame.height)
     return frame
@@ -363,26 +361,11 @@ def _collect(parts: dict[int, Path], lazy: pl.LazyFrame) -> pl.DataFrame:
             try:
                 pl.read_parquet(parts[k])
             except (OSError, pl.exceptions.PolarsError) as one:
-                raise fail(parts[k], f"its data cannot be read ({' '.join(str(one).split())[:160]})", RESUME) from None
+                raise fail(parts[k], f"its data cannot be read ({' '.join(str(one).split())[:160]})",
+                           "delete it and resume the sweep (--resume, resume=True), which recomputes it (a resumed "
+                           "sweep reads footers, not data, so it does not see this damage itself)") from None
         raise fail(next(iter(parts.values())).parent, f"the parts cannot be read together ({err})",
                    "report it: each part reads alone") from None
-
-
-def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFrame:
-    """The dataset as one frame, rows in case order (what :func:`restitution.sweep` returns).
-
-    Checked as :func:`scan_dataset` checks it, and each part's row count against its chunk's:
-    either the rows that were computed, or a :class:`~restitution.RestitutionError` naming the
-    file at fault and the fix (``--resume`` recomputes a damaged part)."""
-    path = Path(path)
-    m, parts = verified_parts(path, allow_partial=allow_partial)
-    files = [str(parts[k]) for k in sorted(parts)]
-    try:
-        frame = pl.scan_parquet(files).collect()
-    except (OSError, pl.exceptions.PolarsError) as err:
-        raise _unreadable(parts, err) from None
-    check_rows(parts, m, frame.height)
-    return frame
 
 
 _part_files = part_files  # the name other modules import

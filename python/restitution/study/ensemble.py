@@ -34,6 +34,8 @@ import numpy as np
 import polars as pl
 
 from ..runs.dataset import SweepResult, _part_files, read_manifest, scan_dataset, sweep_to_dataset
+from ..errors import RestitutionTypeError
+from ..runs.distributions import check_seed
 from ..runs.ensemble import EnsembleSpec
 from ..runs.sweep import MAX_IN_MEMORY_CASES, run_in_memory
 from ..scene import Scene
@@ -99,9 +101,12 @@ class Ensemble:
         seed : int, optional
             Seeds the bootstrap (default: the ensemble's seed; the intervals are reproducible).
         """
+        if isinstance(quantities, str):
+            raise RestitutionTypeError("quantities", f"str {quantities!r}", f"a list of column names, e.g. "
+                                       f"[{quantities!r}]")
         quantities = list(quantities)
         names = self._check_quantities(quantities)
-        rng = np.random.default_rng(np.random.SeedSequence(self.seed if seed is None else seed,
+        rng = np.random.default_rng(np.random.SeedSequence(self.seed if seed is None else check_seed(seed),
                                                            spawn_key=(_BOOT_KEY,)))
         rows = []
         for part in self._points([*self.point_names, *quantities, "timed_out", "refused"]):
