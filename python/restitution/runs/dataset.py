@@ -39,8 +39,9 @@ from ._progress import Progress, StopOnInterrupt, want_progress
 from .. import _engine
 from ..scene import Scene
 from .lock import LOCK_FILE, WriterLock
-from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, check_cases_file, check_rows,
-                    fail, frame_digest, part_files, part_name, part_problem, read_manifest, spec_digest, verified_parts)
+from .store import (CASES_FILE, FORMAT, MANIFEST, META_KEY, check_cases_file, check_parts, check_rows,
+                    fail, frame_digest, listed_parts, part_files, part_name, part_problem, read_manifest,
+                    spec_digest, verified_parts)
 from .sweep import DEFAULT_CHUNK, Chunk, SweepSpec, check_chunk_size, check_threads
 
 _TMP = re.compile(r"^\.(part-\d+\.parquet|cases\.parquet|manifest\.json)\.(\d+)\.\d+\.tmp$")
@@ -344,10 +345,28 @@ def read_dataset(path: str | Path, *, allow_partial: bool = False) -> pl.DataFra
 
     Checked as :func:`scan_dataset` checks it (the row counts from the rows read): either the
     rows that were computed, or a :class:`~restitution.RestitutionError` naming the file at
-    fault and the fix (``--resume`` recomputes a damaged part)."""
+    fault and the fix (``--resume`` recomputes a damaged part). The parts' footers are checked
+    while their data are read (polars reads without the GIL), so the check adds little."""
     path = Path(path)
-    m, parts = verified_parts(path, allow_partial=_engine.boolean("allow_partial", allow_partial))
-    frame = _collect(parts, pl.scan_parquet([str(parts[k]) for k in sorted(parts)]))
+    m, parts = listed_parts(path, allow_partial=_engine.boolean("allow_partial", allow_partial))
+    lazy = pl.scan_parquet([str(parts[k]) for k in sorted(parts)])
+    read: dict[str, Any] = {}
+
+    def collect() -> None:
+        try:
+            read["frame"] = _collect(parts, lazy)
+        except BaseException as err:  # noqa: BLE001 - raised below, after the footers' check
+            read["error"] = err
+
+    reader = threading.Thread(target=collect, name="restitution-read", daemon=True)
+    reader.start()
+    try:
+        check_parts(parts, m)  # a damaged or foreign part is named before any polars error
+    finally:
+        reader.join()
+    if "error" in read:
+        raise read["error"]
+    frame: pl.DataFrame = read["frame"]
     check_rows(parts, m, frame.height)
     return frame
 

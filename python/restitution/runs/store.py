@@ -212,10 +212,18 @@ def verified_parts(path: Path, *, allow_partial: bool) -> tuple[dict[str, Any], 
     """The manifest and the part files of the dataset at ``path``, by chunk index, each checked
     against the manifest (:func:`part_problem`, footers only), with the manifest itself and the
     cases table. An unfinished dataset raises ``ValueError`` unless ``allow_partial``."""
+    m, parts = listed_parts(path, allow_partial=allow_partial)
+    check_parts(parts, m)
+    return m, parts
+
+
+def listed_parts(path: Path, *, allow_partial: bool) -> tuple[dict[str, Any], dict[int, Path]]:
+    """:func:`verified_parts` but for the parts' footers (:func:`check_parts`): the manifest and
+    the cases table checked, the parts listed, none missing unless ``allow_partial``."""
     m = read_manifest(path)
     check_manifest(path, m)
     check_cases_file(path, m)
-    size, n, n_chunks, digest = m["chunk_size"], m["n_cases"], m["n_chunks"], m["spec_sha256"]
+    n_chunks = m["n_chunks"]
     parts = part_files(path)
     extra = sorted(k for k in parts if k >= n_chunks)
     if extra:
@@ -227,12 +235,17 @@ def verified_parts(path: Path, *, allow_partial: bool) -> tuple[dict[str, Any], 
                          f"(first: {missing[0]}); finish it with --resume, or pass allow_partial=True")
     if not parts:
         raise ValueError(f"dataset {path} has no chunk files yet")
+    return m, parts
+
+
+def check_parts(parts: dict[int, Path], m: dict[str, Any]) -> None:
+    """Every part is its chunk of the manifest's sweep (:func:`part_problem`, footers only)."""
+    size, n, digest = m["chunk_size"], m["n_cases"], m["spec_sha256"]
     for k in sorted(parts):
         problem = part_problem(parts[k], k, k * size, min((k + 1) * size, n), digest, count_rows=False)
         if problem:
             raise fail(parts[k], problem, RESUME)
-    return m, parts
 
 
-__all__ = ["CASES_FILE", "FORMAT", "MANIFEST", "META_KEY", "check_manifest", "part_problem",
-           "read_manifest", "verified_parts"]
+__all__ = ["CASES_FILE", "FORMAT", "MANIFEST", "META_KEY", "check_manifest", "check_parts", "listed_parts",
+           "part_problem", "read_manifest", "verified_parts"]
