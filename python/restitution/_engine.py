@@ -84,17 +84,13 @@ def reals(name: str, values: Any, *, cases: bool = False) -> np.ndarray:
     return _typed(name, values, cases, "iuf", _real_type, REAL)
 
 
-def is_integer(value: Any) -> bool:
-    """An integer, bools excluded (a shape's count of corners)."""
-    return _integer_type(type(value))
-
-
 def _integer_type(kind: type) -> bool:
+    """An integer type, bools excluded (a shape's count of corners)."""
     return issubclass(kind, numbers.Integral) and not issubclass(kind, (bool, np.bool_))
 
 
 def integers(name: str, values: Any, *, cases: bool = False) -> np.ndarray:
-    """:func:`reals` for an integer parameter (``n``): each value by :func:`is_integer`."""
+    """:func:`reals` for an integer parameter (``n``): integers, bools excluded."""
     return _typed(name, values, cases, "iu", _integer_type, "an integer (not a bool, a float or a string)")
 
 
