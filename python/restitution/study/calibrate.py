@@ -31,6 +31,7 @@ import numpy as np
 from . import theory
 from .._core import check_theta
 from .._engine import real
+from ..errors import RestitutionError
 from ..scene import Scene
 from ..simulate import simulate
 
@@ -77,6 +78,14 @@ def _bisect_secant(f: Callable[[float], float], lo: float, hi: float, flo: float
     return x, fx, evals
 
 
+def _check_search(tol: float, name: str, largest: float) -> None:
+    """A calibration's settings: its tolerance and the end of its search interval."""
+    if not (0.0 < real("tol", tol) < 1e-2):
+        raise RestitutionError("tol", tol, "in (0, 0.01)")
+    if not (math.isfinite(real(name, largest)) and largest > 0.0):
+        raise RestitutionError(name, largest, "finite and > 0 (the end of the search interval)")
+
+
 def gamma_for_e_n(scene: Scene, e_n: float, *, theta_deg: float = 90.0, tol: float = 1e-6,
                   gamma_max: float = 50.0) -> Calibration:
     """The normal damping gamma for which ``simulate(scene, theta_deg).e_n == e_n`` within ``tol``.
@@ -88,10 +97,9 @@ def gamma_for_e_n(scene: Scene, e_n: float, *, theta_deg: float = 90.0, tol: flo
 
     Raises ``ValueError`` when ``e_n`` is not in (0, 1) or is not reached for gamma <= gamma_max.
     """
-    if not (0.0 < float(e_n) < 1.0):
+    if not (0.0 < real("e_n", e_n) < 1.0):
         raise ValueError(f"require `e_n` in (0, 1) (found {e_n})")
-    if not (0.0 < tol < 1e-2):
-        raise ValueError(f"require `tol` in (0, 0.01) (found {tol})")
+    _check_search(tol, "gamma_max", gamma_max)
     th = real("theta_deg", theta_deg)
     check_theta(th)
     if scene.normal_law != "area":
@@ -136,7 +144,9 @@ def mu_for_e_t(scene: Scene, e_t: float, theta_deg: float, *, omega_in: float = 
     check_theta(th)
     if th >= 90.0:
         raise ValueError("require `theta_deg` < 90 (e_T is undefined head-on)")
-    target = float(e_t)
+    _check_search(tol, "mu_max", mu_max)
+    omega_in = real("omega_in", omega_in)
+    target = real("e_t", e_t)
     if not math.isfinite(target):
         raise ValueError(f"require `e_t` finite (found {e_t})")
     kappa = 0.4 if scene.inertia == "sphere" else theory.DISC

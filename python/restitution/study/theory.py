@@ -39,6 +39,8 @@ from typing import Any
 
 import numpy as np
 
+from .._engine import real
+
 #: kappa = I / (m r^2) for a disc and for a solid sphere.
 DISC = 0.5
 SPHERE = 0.4
@@ -71,7 +73,7 @@ def _check(theta_deg: ArrayLike, mu: ArrayLike, e_n: ArrayLike, r: float, v: flo
     en = np.asarray(e_n, dtype=float)
     if np.any(~((en >= 0.0) & (en <= 1.0))):
         raise ValueError("require `e_n` in [0, 1]")
-    if not (r > 0.0 and v > 0.0):
+    if not (real("r", r) > 0.0 and real("v", v) > 0.0):
         raise ValueError(f"require `r` > 0 and `v` > 0 (found r = {r}, v = {v})")
     return th, m, en
 

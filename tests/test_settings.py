@@ -1,6 +1,6 @@
-"""A collision operator's settings are refused by name, its file is read back whole or refused
-naming it, and its info never says "converged" where its stated error exceeds ``tol`` (issue 42,
-item 4). On main (3d9409c) ``max_nodes=0`` and ``max_rounds=-1`` built tables, ``max_nodes="x"``
+"""Every public function refuses a bad setting by name; a collision operator's file is read back
+whole or refused naming it, and its info never says "converged" where its stated error exceeds
+``tol`` (issue 42, item 4). On main (3d9409c) ``max_nodes=0`` and ``max_rounds=-1`` built tables, ``max_nodes="x"``
 was a bare TypeError, a 2-node table erring 100x ``tol`` said ``stopped="converged"``, and a
 truncated or foreign file raised polars' or json's errors without its path.
 """
@@ -145,4 +145,19 @@ def test_boolean_settings_take_booleans_only(tmp_path: Path, call: Any, name: st
     rs.sweep_to_dataset(SCENE, d, theta_deg=[30.0, 60.0])
     with pytest.raises(rs.RestitutionError) as err:
         call(d)
+    assert err.value.parameter == name
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: rs.calibrate.gamma_for_e_n(SCENE, 0.9, tol="x"), "tol"),
+    (lambda: rs.calibrate.gamma_for_e_n(SCENE, 0.9, gamma_max=0.0), "gamma_max"),
+    (lambda: rs.calibrate.gamma_for_e_n(SCENE, True), "e_n"),
+    (lambda: rs.calibrate.mu_for_e_t(SCENE, 0.85, 20.0, mu_max=-1.0), "mu_max"),
+    (lambda: rs.calibrate.mu_for_e_t(SCENE, 0.85, 20.0, tol=0.0), "tol"),
+    (lambda: rs.theory.theta_c(0.9, 0.5, v=True), "v"),
+    (lambda: rs.theory.e_t(30.0, 0.9, 0.5, r="0.01"), "r"),
+], ids=["calibrate-tol-type", "gamma_max", "e_n", "mu_max", "calibrate-tol-range", "theory-v", "theory-r"])
+def test_the_study_functions_refuse_their_settings_by_name(call: Any, name: str) -> None:
+    with pytest.raises(rs.RestitutionError) as err:
+        call()
     assert err.value.parameter == name
