@@ -193,6 +193,8 @@ def test_a_second_writer_is_refused_naming_the_first_and_a_killed_writer_leaves_
         with pytest.raises(rs.RestitutionError, match=rf"process pid {proc.pid} holds its lock") as err:
             sweep_to_dataset(spec, out, resume=True)
         assert err.value.parameter == "out" and "wait=True" in str(err.value)
+        with pytest.raises(ValueError, match=rf"incomplete: .* process pid {proc.pid} is writing it now"):
+            read_dataset(out)  # a reader is told who is writing, not to resume
         assert proc.poll() is None, "the first writer was still writing"
     finally:
         proc.send_signal(signal.SIGKILL)

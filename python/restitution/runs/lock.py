@@ -101,6 +101,24 @@ def _same_file(f: IO[str], path: Path) -> bool:
     return (st.st_dev, st.st_ino) == (own.st_dev, own.st_ino)
 
 
+def writer_of(out: Path) -> str | None:
+    """"pid N" of the process writing ``out`` now, or None (nobody; or not known on Windows).
+    Asks the lock without taking it for long, and without creating the lock file."""
+    if sys.platform == "win32":  # pragma: no cover - a reader cannot read a held msvcrt lock
+        return None
+    try:
+        f = open(out / LOCK_FILE, encoding="utf-8")  # noqa: SIM115 - closed below
+    except OSError:
+        return None
+    with f:
+        try:
+            fcntl.flock(f.fileno(), fcntl.LOCK_SH | fcntl.LOCK_NB)
+        except BlockingIOError:
+            return _holder(f)
+        fcntl.flock(f.fileno(), fcntl.LOCK_UN)
+    return None
+
+
 def _holder(f: IO[str]) -> str:
     """The pid the holder wrote (a holder that has not written it yet: "unknown")."""
     try:

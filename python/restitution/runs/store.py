@@ -30,6 +30,7 @@ from typing import Any
 import polars as pl
 
 from ..errors import RestitutionFileError
+from .lock import writer_of
 
 FORMAT = "restitution-sweep/1"
 MANIFEST = "manifest.json"
@@ -231,8 +232,10 @@ def listed_parts(path: Path, *, allow_partial: bool) -> tuple[dict[str, Any], di
                    "delete it if it does not belong here (or restore the manifest if it was edited)")
     missing = [k for k in range(n_chunks) if k not in parts]
     if missing and not allow_partial:
+        writer = writer_of(path)
+        how = (f"process {writer} is writing it now: wait for it" if writer else "finish it with --resume")
         raise ValueError(f"dataset {path} is incomplete: {len(missing)} of {n_chunks} chunks missing "
-                         f"(first: {missing[0]}); finish it with --resume, or pass allow_partial=True")
+                         f"(first: {missing[0]}); {how}, or pass allow_partial=True")
     if not parts:
         raise ValueError(f"dataset {path} has no chunk files yet")
     return m, parts
