@@ -28,11 +28,11 @@ from typing import Callable
 
 import numpy as np
 
-from . import theory
 from .._core import check_theta
 from .._engine import real
 from ..scene import Scene
 from ..simulate import simulate
+from ..study import theory
 
 
 @dataclass(frozen=True)
