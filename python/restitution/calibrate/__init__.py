@@ -2,8 +2,13 @@
 
 - :mod:`.roots`: one parameter from one coefficient by root finding (:func:`gamma_for_e_n`,
   :func:`mu_for_e_t`).
+- :mod:`.sobol`: which parameter moves which quantity at which angle, by Sobol' indices
+  (:func:`sensitivity`, :func:`plot_sensitivity`).
+
+The statistical methods need the ``calibrate`` extra (``pip install "restitution[calibrate]"``).
 """
 
 from .roots import Calibration, gamma_for_e_n, mu_for_e_t
+from .sobol import plot_sensitivity, sensitivity
 
-__all__ = ["Calibration", "gamma_for_e_n", "mu_for_e_t"]
+__all__ = ["Calibration", "gamma_for_e_n", "mu_for_e_t", "plot_sensitivity", "sensitivity"]
