@@ -8,14 +8,13 @@ is undefined. So the design for mu belongs on the sliding branch, towards its en
 
 from __future__ import annotations
 
-import doctest
 
 import numpy as np
 import polars as pl
 import pytest
 
 import restitution as rs
-from restitution.calibrate import _forward, experiment
+from restitution.calibrate import _forward
 
 #: The linear law on the disc at the paper's step: cheap, and its e_N is 1 (no damping).
 DISC = rs.Scene.paper(shape=rs.Disc(r=0.01), normal_law="linear")
@@ -30,9 +29,6 @@ SIGMA = {"e_t": 0.02}
 def chosen() -> pl.DataFrame:
     return rs.calibrate.design(DISC, {"mu": MU}, CANDIDATES, k=4, quantities=["e_t"], sigma=SIGMA)
 
-
-def test_doctests():
-    assert doctest.testmod(experiment).failed == 0
 
 
 def test_mu_is_measured_on_the_sliding_branch(chosen):

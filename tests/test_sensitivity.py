@@ -9,14 +9,13 @@ tangential stiffness, which takes over near normal incidence.
 
 from __future__ import annotations
 
-import doctest
 
 import numpy as np
 import polars as pl
 import pytest
 
 import restitution as rs
-from restitution.calibrate import _forward, sobol
+from restitution.calibrate import _forward
 
 SPHERE = rs.Scene(shape=rs.Sphere(r=2.5e-3), normal_law="hertz", E=380e9, nu=0.23, rho=4000.0, cor=0.98,
                   mu=0.092, v=3.9)
@@ -44,10 +43,6 @@ def sliding() -> pl.DataFrame:
     return rs.calibrate.sensitivity(SPHERE, {"mu": MU, "cor": COR}, n=256, seed=3, theta_deg=[10.0, 20.0, 90.0],
                                     quantities=["e_n", "e_t"], n_resamples=299)
 
-
-def test_doctests():
-    assert doctest.testmod(sobol).failed == 0
-    assert doctest.testmod(_forward).failed == 0
 
 
 def test_sliding_branch_indices_are_the_products(sliding):
@@ -118,3 +113,9 @@ def test_refusals_name_the_parameter(kwargs, name):
     with pytest.raises(rs.RestitutionError) as err:
         rs.calibrate.sensitivity(SPHERE, **args)
     assert err.value.parameter == name
+
+
+def test_without_scipy_the_error_names_the_extra(monkeypatch):
+    monkeypatch.setitem(__import__("sys").modules, "scipy.stats", None)
+    with pytest.raises(ImportError, match=r'pip install "restitution\[calibrate\]"'):
+        rs.calibrate.sensitivity(SPHERE, {"mu": MU, "cor": COR}, n=32, theta_deg=[20.0])

@@ -14,7 +14,7 @@ def stats() -> Any:
     """``scipy.stats``, or an ImportError saying which extra provides it."""
     try:
         import scipy.stats
-    except ImportError as err:  # pragma: no cover - the test environment has scipy
+    except ImportError as err:
         raise ImportError(f"restitution.calibrate needs scipy >= 1.11: {INSTALL}") from err
     if not hasattr(scipy.stats, "sobol_indices"):  # pragma: no cover
         raise ImportError(f"restitution.calibrate needs scipy >= 1.11 (found {scipy.__version__}): {INSTALL}")
