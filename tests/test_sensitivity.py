@@ -107,6 +107,8 @@ def test_reproducible_and_plotted(tmp_path):
     (dict(vary={"integrator": rs.Choice(["gear5", "adaptive"])}), "vary"),
     (dict(vary={"theta_deg": MU}), "vary"),
     (dict(seed=-1), "seed"),
+    (dict(confidence_level=1.5), "confidence_level"),
+    (dict(n_resamples=0), "n_resamples"),
 ])
 def test_refusals_name_the_parameter(kwargs, name):
     args = {"vary": {"mu": MU, "cor": COR}, "n": 32, "theta_deg": [20.0], **kwargs}

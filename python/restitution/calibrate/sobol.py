@@ -83,6 +83,10 @@ def sensitivity(scene: Scene, vary: Mapping[str, Any], *, n: int = 1024, seed: i
     n = _check_n(n)
     generator = np.random.default_rng(check_seed(seed))
     names = check_quantities(quantities)
+    if not (isinstance(confidence_level, float) and 0.0 < confidence_level < 1.0):
+        raise RestitutionError("confidence_level", repr(confidence_level), "a float in (0, 1)")
+    if isinstance(n_resamples, bool) or not isinstance(n_resamples, (int, np.integer)) or n_resamples < 1:
+        raise RestitutionError("n_resamples", repr(n_resamples), "an integer >= 1")
     points = pl.DataFrame(
         [(float(t), float(w)) for t in np.atleast_1d(theta_deg) for w in np.atleast_1d(omega_in)],
         schema={"theta_deg": pl.Float64, "omega_in": pl.Float64}, orient="row")
@@ -99,11 +103,9 @@ def sensitivity(scene: Scene, vary: Mapping[str, Any], *, n: int = 1024, seed: i
     rows = [(q, name, theta, omega, *s1[k, j], *st[k, j])
             for k, (q, (theta, omega)) in enumerate((q, p) for q in names for p in points.rows())
             for j, name in enumerate(priors)]
-    frame = pl.DataFrame(rows, orient="row", schema={"quantity": pl.String, "parameter": pl.String,
-                                                     "theta_deg": pl.Float64, "omega_in": pl.Float64,
-                                                     "S1": pl.Float64, "S1_lo": pl.Float64, "S1_hi": pl.Float64,
-                                                     "ST": pl.Float64, "ST_lo": pl.Float64, "ST_hi": pl.Float64})
-    return frame.fill_nan(None)
+    schema = {"quantity": pl.String, "parameter": pl.String, "theta_deg": pl.Float64, "omega_in": pl.Float64,
+              **{c: pl.Float64 for c in INDEX_COLUMNS}}
+    return pl.DataFrame(rows, orient="row", schema=schema).fill_nan(None)
 
 
 def _check_vary(vary: Mapping[str, Any]) -> dict[str, Distribution]:

@@ -121,8 +121,9 @@ const EMPTY: u64 = u64::MAX;
 
 /// The nodes' e, computed on first use by whichever thread needs one first (a node is a pure
 /// function of its index, so a race computes the same bits twice and the results never depend
-/// on the order). Each costs one solution of the law (~0.1 ms); a sweep over cor in
-/// [0.5, 0.99] touches about 170 of the 576, once per process.
+/// on the order). Each costs one solution of the law, a tenth or less of what one inversion by
+/// Brent's method cost; a sweep over cor in [0.5, 0.99] touches about 150 of the 576, once per
+/// process.
 static TABLE: [AtomicU64; NODES] = [const { AtomicU64::new(EMPTY) }; NODES];
 
 /// The table's node `i`: e at beta = exp([`U_FIRST`] + i [`U_STEP`]).
