@@ -7,11 +7,11 @@ import doctest
 import pytest
 
 import restitution as rs
-from restitution.study import calibrate
+from restitution import calibrate
 
 
 def test_doctests():
-    assert doctest.testmod(calibrate).failed == 0
+    assert doctest.testmod(calibrate.roots).failed == 0
 
 
 @pytest.mark.parametrize("target", [0.5, 0.75, 0.9, 0.97])

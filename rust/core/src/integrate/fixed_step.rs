@@ -165,6 +165,24 @@ fn pascal(g: &mut [Lanes; 6]) {
     }
 }
 
+/// Sets the rows of the higher derivatives (2 to 5) to zero where they have decayed below the
+/// smallest normal float. Without a force they decay geometrically, step after step (a damped
+/// Hertz contact ends where its force is clipped to zero while the overlap still closes, over
+/// hundreds of steps at cor 0.5), into subnormal numbers, on which every addition of the
+/// predictor costs an x86 core a microcode assist of ~100 cycles: the sphere's Gear-5 impact
+/// cost 4x at cor 0.5 what it cost at 0.98 for 10 % more steps. A value below 2.2e-308 is far
+/// below half an ulp of any position or velocity it is added to, so nothing else changes.
+#[inline(always)]
+fn flush_subnormal(g: &mut [Lanes; 6]) {
+    for row in g[2..].iter_mut() {
+        for x in row.iter_mut() {
+            if x.abs() < f64::MIN_POSITIVE {
+                *x = 0.0;
+            }
+        }
+    }
+}
+
 /// The inverse of [`pascal`]: the Taylor shift back by one step.
 fn unpascal(g: &mut [Lanes; 6]) {
     for lo in 0..5 {
@@ -273,6 +291,7 @@ impl Stepper for Gear5 {
                 row[i] += pc * delta[i];
             }
         }
+        flush_subnormal(&mut next);
         self.gp = next;
         self.delta = delta;
         out

@@ -28,12 +28,12 @@ from typing import Callable
 
 import numpy as np
 
-from . import theory
 from .._core import check_theta
 from .._engine import real
 from ..errors import RestitutionError
 from ..scene import Scene
 from ..simulate import simulate
+from ..study import theory
 
 
 @dataclass(frozen=True)
