@@ -16,7 +16,8 @@ from .runs.sweep import sweep
 from .runs.distributions import Choice, LogNormal, Normal, Uniform
 from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemble
 from .collision import CollisionOperator
-from .study import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
+from .study import analysis, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
+from . import calibrate  # measurements to contact parameters
 
 __all__ = [
     "Choice",

@@ -133,7 +133,7 @@ class _Outputs:
 def _calibration(scene: Any) -> tuple[Any, float]:
     """Calibration of the preset: the gamma that gives e_N = 0.90 head-on on this shape, and the
     e_N the preset's rounded gamma gives there."""
-    from . import calibrate
+    from .. import calibrate
 
     cal = calibrate.gamma_for_e_n(scene, 0.90)
     e_n_head_on = simulate(scene, 90.0).e_n

@@ -28,7 +28,7 @@ from typing import Callable
 
 import numpy as np
 
-from . import theory
+from ..study import theory
 from .._core import check_theta
 from .._engine import real
 from ..scene import Scene
