@@ -4,7 +4,6 @@ the sphere, the sliding branch's degeneracy, the predictive check, Student-t aga
 
 from __future__ import annotations
 
-import doctest
 import math
 import sys
 
@@ -13,16 +12,11 @@ import polars as pl
 import pytest
 
 import restitution as rs
-from restitution.calibrate import _forward, diagnostics, sampler
+from restitution.calibrate import _forward, diagnostics
 from restitution.calibrate.compare import waic_pointwise
 from restitution.study import published, validate
 
 pytest.importorskip("emcee")
-
-
-def test_docstrings():
-    for module in (rs.datasets, sampler, _forward):
-        assert doctest.testmod(module).failed == 0
 
 
 def test_kharaz_dataset_is_the_validation_curves_with_sigma_from_their_scatter():
@@ -52,6 +46,7 @@ GOOD = {"theta_deg": [30.0, 60.0], "quantity": ["e_t", "e_n"], "value": [0.8, 0.
     ("theta_deg", [30.0, 90.5], 1, "data.theta_deg"),
     ("value", [float("nan"), 0.9], 0, "data.value"),
     ("value", [0.8, None], 1, "data.value"),
+    ("theta_deg", [90.0, 60.0], 0, "e_t"),
 ])
 def test_bad_measurements_name_the_row_and_the_column(column, bad, row, match):
     with pytest.raises(rs.RestitutionError, match=match) as err:

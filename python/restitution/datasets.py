@@ -52,7 +52,7 @@ def check_measurements(data: Any) -> pl.DataFrame:
 
     Raises :class:`restitution.RestitutionError` naming the column and the row (``case``) of the
     first bad value: a missing column, an unknown quantity, a value that is not finite, sigma
-    <= 0, theta_deg outside (0, 90].
+    <= 0, theta_deg outside (0, 90], e_t head-on (where the record leaves it undefined).
     """
     if not isinstance(data, pl.DataFrame):
         raise TypeError(f"measurements must be a polars DataFrame (found {type(data).__name__})")
@@ -77,6 +77,9 @@ def check_measurements(data: Any) -> pl.DataFrame:
         bad = np.flatnonzero(~ok(numbers[name]))
         if bad.size:
             raise RestitutionError(f"data.{name}", float(numbers[name][bad[0]]), expected, case=int(bad[0]))
+    head_on_e_t = np.flatnonzero((numbers["theta_deg"] == 90.0) & (np.asarray(quantity) == "e_t"))
+    if head_on_e_t.size:
+        raise RestitutionError("data.theta_deg", 90.0, "< 90 for e_t (undefined head-on)", case=int(head_on_e_t[0]))
     return pl.DataFrame({"theta_deg": numbers["theta_deg"], "omega_in": numbers["omega_in"],
                          "quantity": pl.Series(quantity, dtype=pl.String), "value": numbers["value"],
                          "sigma": numbers["sigma"]})

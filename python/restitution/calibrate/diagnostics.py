@@ -54,10 +54,11 @@ def convergence(chain: np.ndarray, *, min_ess: float, rhat_max: float) -> Conver
     from emcee.autocorr import integrated_time
 
     n_iter, walkers, _ = chain.shape
-    tau0 = integrated_time(chain, tol=0)
-    discard = min(int(BURN_TAUS * np.max(tau0)), n_iter // 2)
-    kept = chain[discard:]
-    tau = integrated_time(kept, tol=0)
+    with np.errstate(invalid="ignore", divide="ignore"):  # a parameter that has not moved: tau NaN
+        tau0 = np.nan_to_num(integrated_time(chain, tol=0), nan=np.inf)
+        discard = min(int(BURN_TAUS * np.max(tau0)) if np.isfinite(tau0).all() else n_iter // 2, n_iter // 2)
+        kept = chain[discard:]
+        tau = np.nan_to_num(integrated_time(kept, tol=0), nan=np.inf)
     reliable = bool(kept.shape[0] > TAU_FACTOR * np.max(tau))
     ess = walkers * kept.shape[0] / tau
     rhat = split_rhat(kept) if kept.shape[0] >= 4 else np.full(tau.shape, np.inf)
