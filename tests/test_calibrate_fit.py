@@ -170,6 +170,9 @@ def test_bad_fit_inputs_are_refused():
         rs.calibrate.fit(rs.Scene(), data, {"grip": rs.Uniform(0, 1)})
     with pytest.raises(rs.RestitutionError, match="prior"):
         rs.calibrate.fit(rs.Scene(), data, {"mu": rs.Choice([0.1, 0.2])})
+    for option, value in (("max_iter", 10), ("min_ess", 0), ("rhat_max", 1.0), ("walkers", 7)):
+        with pytest.raises(rs.RestitutionError, match=option):
+            rs.calibrate.fit(rs.Scene(), data, {"mu": rs.Uniform(0, 1)}, **{option: value})
 
 
 def test_without_emcee_the_error_names_the_extra(monkeypatch):

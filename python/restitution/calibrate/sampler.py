@@ -234,8 +234,12 @@ def run(problem: Problem, *, seed: int = 1, walkers: int | None = None, max_iter
     walkers = max(8, 4 * dim) if walkers is None else int(walkers)
     if walkers < 2 * dim or walkers % 2:
         raise RestitutionError("walkers", walkers, f"an even number >= {2 * dim} (2 x the free fields)")
-    if not (isinstance(max_iter, int) and max_iter >= BATCH):
+    if isinstance(max_iter, bool) or not (isinstance(max_iter, int) and max_iter >= BATCH):
         raise RestitutionError("max_iter", max_iter, f"an integer >= {BATCH}")
+    if not (isinstance(min_ess, (int, float)) and min_ess > 0):
+        raise RestitutionError("min_ess", min_ess, "> 0")
+    if not (isinstance(rhat_max, (int, float)) and rhat_max > 1.0):
+        raise RestitutionError("rhat_max", rhat_max, "> 1")
     t0 = time.perf_counter()
     target = Target(problem)
     start = _start(problem, target, seed, walkers)
