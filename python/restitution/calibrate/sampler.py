@@ -4,7 +4,8 @@
 The target is p(theta | data) ~ prior(theta) prod_i L(value_i | model_i(theta), sigma_i), each
 point's likelihood Gaussian (or Student-t) with its own sigma. emcee's affine-invariant ensemble
 samples it (the engine gives no gradients, which HMC or NUTS would need); each iteration
-evaluates all walkers at all data points in one engine call (:func:`._forward.predict`). The
+updates the ensemble's two halves in turn, each half at all data points in one engine call
+(:func:`._forward.predict`). The
 chain grows in batches until it passes its convergence tests or reaches ``max_iter``.
 """
 
