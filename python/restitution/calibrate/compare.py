@@ -66,7 +66,7 @@ def compare(scenes: Mapping[str, Scene], data: pl.DataFrame, free: Mapping[str, 
                      "p_waic": meta[name][0], "d_elpd": float(diff.sum()),
                      "d_se": math.sqrt(n * diff.var(ddof=1)) if name != best else 0.0,
                      "converged": meta[name][1],
-                     "warning": f"{meta[name][2]} points with p_waic > {P_WAIC_WARN}" if meta[name][2] else ""})
+                     "warning": f"p_waic > {P_WAIC_WARN} at {meta[name][2]} of {n} points" if meta[name][2] else ""})
     out = pl.DataFrame(rows).sort("elpd_waic", descending=True)
     return out.with_columns(pl.int_range(1, out.height + 1).alias("rank")).select(
         "rank", "model", "elpd_waic", "se", "p_waic", "d_elpd", "d_se", "converged", "warning")
