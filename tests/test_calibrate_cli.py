@@ -79,3 +79,17 @@ def test_ctrl_c_stops_after_the_batch_and_writes_the_unconverged_chain(tmp_path)
     assert proc.returncode == 130, err
     assert "NOT converged: interrupted" in (out / "report.md").read_text()
     assert pl.read_parquet(out / "samples.parquet").height > 0
+
+
+def test_the_example_config_is_the_example_script_s_problem():
+    from restitution.calibrate import config
+
+    problem, options = config.load(ROOT / "examples" / "calibrate_kharaz.toml")
+    sys.path.insert(0, str(ROOT / "examples"))
+    try:
+        import calibrate_kharaz
+    finally:
+        sys.path.remove(str(ROOT / "examples"))
+    assert problem.scene == calibrate_kharaz.SCENE
+    assert problem.free == calibrate_kharaz.FREE and options["seed"] == 1
+    assert problem.data.equals(__import__("restitution").datasets.kharaz2001())
