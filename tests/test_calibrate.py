@@ -7,7 +7,7 @@ import doctest
 import pytest
 
 import restitution as rs
-from restitution import calibrate
+from restitution.calibrate import roots as calibrate
 
 
 def test_doctests():

@@ -17,7 +17,7 @@ from .runs.distributions import Choice, LogNormal, Normal, Uniform
 from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemble
 from .collision import CollisionOperator
 from .study import analysis, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
-from . import calibrate  # rs.calibrate: from measurements to parameters
+from . import calibrate, datasets  # measurements to contact parameters; measured data sets
 
 __all__ = [
     "Choice",
@@ -37,6 +37,7 @@ __all__ = [
     "__version__",
     "analysis",
     "calibrate",
+    "datasets",
     "ensemble",
     "ensemble_to_dataset",
     "inverse",

@@ -14,7 +14,7 @@ from typing import Sequence
 from . import __version__
 
 #: Subcommand modules, in the order ``--help`` lists them.
-COMMANDS = ("fig2", "sweep", "ensemble", "reproduce", "accuracy", "validate", "pairs")
+COMMANDS = ("fig2", "sweep", "ensemble", "calibrate", "reproduce", "accuracy", "validate", "pairs")
 
 
 def build_parser() -> argparse.ArgumentParser:

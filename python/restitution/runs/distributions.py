@@ -170,6 +170,11 @@ class Distribution:
         """The CDF at ``x`` (truncation included)."""
         raise NotImplementedError
 
+    def logpdf(self, x: np.ndarray) -> np.ndarray:
+        """The log density at ``x`` (truncation included; -inf outside the support): the prior
+        of a calibration (:func:`restitution.calibrate.fit`)."""
+        raise RestitutionError("prior", self.kind, "a continuous distribution (Uniform, Normal or LogNormal)")
+
     def draw(self, seed: int, name: str, start: int, stop: int) -> np.ndarray:
         """Draws ``start:stop`` of parameter ``name`` from ``seed`` (see the module doc)."""
         return self.draw_at(seed, name, np.arange(start, stop, dtype=np.int64))
@@ -246,6 +251,10 @@ class Uniform(Distribution):
     def cdf(self, x: np.ndarray) -> np.ndarray:
         return np.clip((np.asarray(x, dtype=float) - self.lo) / (self.hi - self.lo), 0.0, 1.0)
 
+    def logpdf(self, x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        return np.where((x >= self.lo) & (x <= self.hi), -math.log(self.hi - self.lo), -np.inf)
+
 
 @dataclass(frozen=True)
 class Normal(Distribution):
@@ -290,6 +299,14 @@ class Normal(Distribution):
         phi = np.vectorize(normal_cdf)(-z if flip else z)
         c = np.clip((phi - f_lo) / (f_hi - f_lo), 0.0, 1.0)
         return 1.0 - c if flip else c
+
+    def logpdf(self, x: np.ndarray) -> np.ndarray:
+        f_lo, f_hi, _ = self._f  # the mass kept by the truncation is f_hi - f_lo, mirrored or not
+        x = np.asarray(x, dtype=float)
+        z = (x - self.mean) / self.sd
+        inside = (x >= (-np.inf if self.lo is None else self.lo)) & (x <= (np.inf if self.hi is None else self.hi))
+        dens = -0.5 * z * z - math.log(self.sd) - 0.5 * math.log(2.0 * math.pi) - math.log(f_hi - f_lo)
+        return np.where(inside, dens, -np.inf)
 
 
 @dataclass(frozen=True)
@@ -340,6 +357,11 @@ class LogNormal(Distribution):
         x = np.asarray(x, dtype=float)
         with np.errstate(divide="ignore"):
             return np.where(x > 0.0, self._normal.cdf(np.log(np.where(x > 0.0, x, 1.0))), 0.0)
+
+    def logpdf(self, x: np.ndarray) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        safe = np.where(x > 0.0, x, 1.0)
+        return np.where(x > 0.0, self._normal.logpdf(np.log(safe)) - np.log(safe), -np.inf)
 
 
 @dataclass(frozen=True)
