@@ -11,7 +11,7 @@ from restitution.calibrate import roots as calibrate
 
 
 def test_doctests():
-    assert doctest.testmod(calibrate.roots).failed == 0
+    assert doctest.testmod(calibrate).failed == 0
 
 
 @pytest.mark.parametrize("target", [0.5, 0.75, 0.9, 0.97])

@@ -30,7 +30,8 @@ import polars as pl
 from .. import datasets
 from ..runs.config import ConfigError, _check_keys, _scene, _table, failer
 from ..runs.distributions import from_dict
-from .sampler import Problem, make_problem
+from .problem import Problem
+from .sampler import make_problem
 
 if sys.version_info >= (3, 11):
     import tomllib
