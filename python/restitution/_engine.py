@@ -47,6 +47,8 @@ def flag(name: str, value: Any) -> float:
 
 def real(name: str, value: Any) -> float:
     """A real number (bool excluded) as float; the engine checks its range."""
+    if type(value) is float:  # the common case, without the ABC check below (a scene's hot path)
+        return value
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise TypeError(f"`{name}` must be a real number (found {type(value).__name__} {value!r})")
     return float(value)
@@ -118,6 +120,13 @@ def check(cols: Mapping[str, np.ndarray], vertices: Templates) -> None:
     the parameter, its value and the case (the row of ``cols``)."""
     own, partner = _split(vertices)
     _core.check_cases(cols, own, partner_vertices=partner)
+
+
+def check_one(row: Sequence[float], vertices: Templates) -> None:
+    """Every rule of the one case of ``row`` (in ``CASE_COLUMNS`` order), without running it:
+    raises :class:`RestitutionError` naming the parameter and its value."""
+    own, partner = _split(vertices)
+    _core.check_case(row, own, partner_vertices=partner)
 
 
 def run(cols: Mapping[str, np.ndarray], vertices: Templates, threads: int) -> dict[str, np.ndarray]:
