@@ -17,6 +17,7 @@ from .runs.distributions import Choice, LogNormal, Normal, Uniform
 from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemble
 from .collision import CollisionOperator
 from .study import analysis, calibrate, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
+from . import lammps  # rs.lammps: the LAMMPS round trip (running it needs the `lammps` extra)
 
 __all__ = [
     "Choice",
@@ -39,6 +40,7 @@ __all__ = [
     "ensemble",
     "ensemble_to_dataset",
     "inverse",
+    "lammps",
     "read_dataset",
     "read_ensemble",
     "simulate",

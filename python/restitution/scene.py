@@ -265,6 +265,30 @@ class Scene:
         copy.__post_init__()
         return copy
 
+    def to_lammps(self, theta_deg: float, omega_in: float = 0.0, *,
+                  steps_per_contact: int | None = None) -> str:
+        """A complete LAMMPS input script (units si) of this scene's impact at ``theta_deg``
+        (from the plate) with spin ``omega_in``: the particle, the plate as a ``fix wall/gran
+        granular`` wall with this scene's law, the step (the estimated contact time over
+        ``steps_per_contact``, None: 1000), a run to separation, and a last line
+        ``restitution: vx_out=... vy_out=... omega_out=... contact_time=...`` in this project's
+        axes and signs. What LAMMPS cannot express (the area law, polygons, a partner) raises
+        :class:`RestitutionError` naming the field and why. The mapping: docs/lammps.md,
+        ``restitution.lammps.MAPPING``.
+
+        Examples
+        --------
+        >>> import restitution as rs
+        >>> ball = rs.Scene(shape=rs.Sphere(2.5e-3), normal_law="hertz", E=380e9, nu=0.23, rho=4000.0,
+        ...                 cor=0.98, mu=0.092, v=3.9)
+        >>> script = ball.to_lammps(theta_deg=60.0)
+        >>> "damping coeff_restitution tangential mindlin/force" in script
+        True
+        """
+        from .lammps.script import write
+
+        return write(self, theta_deg, omega_in, steps_per_contact)
+
     @property
     def max_dt_factor(self) -> float:
         """Largest ``dt_factor`` this scene accepts: its integrator's stability bound for its
