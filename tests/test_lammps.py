@@ -149,6 +149,8 @@ def test_what_lammps_cannot_express_is_refused_naming_the_field(scene, field):
 def test_bad_arguments_are_refused():
     with pytest.raises(rs.RestitutionError, match="theta_deg"):
         sphere().to_lammps(theta_deg=0.0)
+    with pytest.raises(rs.RestitutionError, match="omega_in"):
+        sphere().to_lammps(theta_deg=45.0, omega_in=float("nan"))
     with pytest.raises(rs.RestitutionError, match="steps_per_contact"):
         sphere().to_lammps(theta_deg=45.0, steps_per_contact=2)
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import ctypes
 import importlib.metadata
 import itertools
+import math
 import re
 import tempfile
 from dataclasses import dataclass
@@ -103,7 +104,7 @@ def simulate(scene: Any, theta_deg: float, omega_in: float = 0.0,
     """
     script = scene.to_lammps(theta_deg=theta_deg, omega_in=omega_in, steps_per_contact=steps_per_contact)
     vx, vy, omega, t_c = run_script(script)
-    v_x, v_y = scene.v * np.cos(np.radians(theta_deg)), -scene.v * np.sin(np.radians(theta_deg))
+    v_x, v_y = scene.v * math.cos(math.radians(theta_deg)), -scene.v * math.sin(math.radians(theta_deg))
     dt = float(re.search(r"^timestep (\S+)$", script, re.M).group(1))  # type: ignore[union-attr]
     return LammpsRecord(theta_deg=float(theta_deg), omega_in=float(omega_in), vx_out=vx, vy_out=vy,
                         omega_out=omega, contact_time=t_c, e_n=-vy / v_y,

@@ -160,6 +160,8 @@ def write(scene: Any, theta_deg: float, omega_in: float = 0.0, steps_per_contact
     steps: :data:`STEPS_PER_CONTACT`."""
     steps_per_contact = STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
     _core.check_theta(float(theta_deg))
+    if not math.isfinite(omega_in):
+        raise RestitutionError("omega_in", omega_in, "finite (rad/s)")
     if scene.partner is not None:
         raise _refuse("partner", type(scene.partner).__name__)
     if not isinstance(scene.shape, (Sphere, Disc)):
