@@ -265,14 +265,15 @@ class Scene:
         copy.__post_init__()
         return copy
 
-    def to_lammps(self, theta_deg: float, omega_in: float = 0.0, *,
+    def to_lammps(self, theta_deg: float, omega_in: float = 0.0, *, partner_omega_in: float = 0.0,
                   steps_per_contact: int | None = None) -> str:
         """A complete LAMMPS input script (units si) of this scene's impact at ``theta_deg``
         (from the plate) with spin ``omega_in``: the particle, the plate as a ``fix wall/gran
-        granular`` wall with this scene's law, the step (the estimated contact time over
+        granular`` wall with this scene's law (a Disc or Sphere partner: a second atom, spin
+        ``partner_omega_in``, and ``pair_style granular``), the step (the estimated contact time over
         ``steps_per_contact``, None: 1000), a run to separation, and a last line
         ``restitution: vx_out=... vy_out=... omega_out=... contact_time=...`` in this project's
-        axes and signs. What LAMMPS cannot express (the area law, polygons, a partner) raises
+        axes and signs. What LAMMPS cannot express (the area law, polygons) raises
         :class:`RestitutionError` naming the field and why. The mapping: docs/lammps.md,
         ``restitution.lammps.MAPPING``.
 
@@ -287,7 +288,7 @@ class Scene:
         """
         from .lammps.script import write
 
-        return write(self, theta_deg, omega_in, steps_per_contact)
+        return write(self, theta_deg, omega_in, partner_omega_in, steps_per_contact)
 
     @property
     def max_dt_factor(self) -> float:

@@ -45,7 +45,8 @@ MAPPING: tuple[Field, ...] = (
     Field("rho", "`set atom 1 mass`", "m = 4/3 pi r^3 rho (sphere), pi r^2 rho (disc, per metre of depth)"),
     Field("inertia", "`fix nve/sphere` [`disc`]", "I = 2/5 m r^2 (sphere; disc with \"sphere\"); "
           "`disc` keyword: I = 1/2 m r^2 (disc with \"shape\")"),
-    Field("v", "`velocity all set`", "v (cos theta, -sin theta, 0); theta_deg from the plate"),
+    Field("v", "`velocity particle set`", "v (cos theta, -sin theta, 0); theta_deg from the plate (a pair: "
+          "from the tangent at first touch, v the relative speed)"),
     Field("normal_law", "`hertz` or `hooke` in `fix wall/gran granular`", "\"hertz\": `hertz` k_n = 4/3 E*; "
           "\"linear\": `hooke` k_n = kn"),
     Field("E, nu", "`hertz` k_n; `mindlin` k_t", "E* and G* of docs/model.md 14.2, 14.4, written as "
@@ -66,8 +67,15 @@ MAPPING: tuple[Field, ...] = (
           "m_t = (1/m + r^2/I)^-1"),
     Field("(Mindlin's damping)", "`mindlin` x_gamma,t", "x = c_t / c_n = 2 sqrt(G*/E*): the engine damps "
           "Mindlin's spring with the normal law's beta"),
-    Field("theta_deg, omega_in", "`velocity all set`, `set atom 1 omega 0 0`", "project axes: the plate "
+    Field("theta_deg, omega_in", "`velocity particle set`, `set atom 1 omega 0 0`", "project axes: the plate "
           "is `yplane 0.0 NULL`, x along it, spin about +z (counter-clockwise positive)"),
+    Field("partner", "`pair_style granular`, `pair_coeff * *`, atom 2", "a Disc or Sphere partner at rest at the "
+          "origin, the particle at (0, r1 + r2); the coefficients are the pair's effective ones: LAMMPS takes "
+          "R* and m* from the atoms"),
+    Field("partner_rho, partner_E, partner_nu", "`set atom 2 mass`; folded into k_n and k_t",
+          "E* and G* of the two bodies (docs/model.md 17.3); a linear-law pair's springs in series: "
+          "k* = kn / 2, c* = cn / 2"),
+    Field("partner_omega_in", "`set atom 2 omega 0 0`", "the partner's spin"),
     Field("integrator, dt_factor, tol, error_estimate, max_steps, overlap", "`timestep`, `run`, `fix halt`",
           "not mapped: LAMMPS integrates by velocity Verlet at `timestep` = t_c / steps_per_contact and "
           "halts at separation"),
@@ -79,7 +87,8 @@ REFUSED: dict[str, str] = {
                   "not on an overlap area (the area law)",
     "shape": "a Sphere or a Disc: LAMMPS's granular particles are round (atom_style sphere), "
              "a polygon has no granular contact there",
-    "partner": "None (the plate): a partner body is not written yet",
+    "partner": "None (the plate), a Disc or a Sphere: LAMMPS's granular particles are round, a polygon "
+               "has no granular contact there",
     "gamma_t": "0 here: LAMMPS scales the tangential damping from the normal one (eta_t = x eta_n), "
                "so a tangential dashpot needs a normal one of the same form (cn > 0 with the linear "
                "law; none with the Hertz law's linear spring, whose eta_n varies with the depth)",
@@ -102,34 +111,63 @@ def _refuse(name: str, value: Any) -> RestitutionError:
     return RestitutionError(name, value, REFUSED[name])
 
 
+@dataclass(frozen=True)
+class _Contact:
+    """What the laws read, as the engine derives it (docs/model.md 14, 17.3): the two bodies'
+    masses and inertias (the plate's infinite), the effective mass, radius and tangential mass."""
+
+    sphere: bool
+    masses: tuple[float, ...]
+    inertias: tuple[float, ...]
+    radii: tuple[float, ...]
+
+    @property
+    def m_eff(self) -> float:
+        return 1.0 / sum(1.0 / m for m in self.masses)
+
+    @property
+    def r_eff(self) -> float:
+        return 1.0 / sum(1.0 / r for r in self.radii)
+
+    @property
+    def m_t(self) -> float:
+        """1/m_t = sum 1/m_i + r_i^2/I_i: the contact point's tangential mass."""
+        return 1.0 / sum(1.0 / m + r * r / i for m, r, i in zip(self.masses, self.radii, self.inertias))
+
+
+def _contact(scene: Any) -> _Contact:
+    """The particle, and the partner when there is one, as the engine takes them."""
+    sphere = isinstance(scene.shape, Sphere)
+    bodies = [(scene.shape.r, scene.rho)]
+    if scene.partner is not None:
+        bodies.append((scene.partner.r, scene.partner_rho if scene.partner_rho is not None else scene.rho))
+    kappa = 0.5 if (not sphere and scene.inertia == "shape") else 0.4
+    masses = tuple((4.0 / 3.0 * math.pi * r**3 if sphere else math.pi * r * r) * rho for r, rho in bodies)
+    radii = tuple(r for r, _ in bodies)
+    return _Contact(sphere, masses, tuple(kappa * m * r * r for m, r in zip(masses, radii)), radii)
+
+
 def _moduli(scene: Any) -> tuple[float, float]:
-    """E* and G* of the sphere on its plate (docs/model.md, 14.2 and 14.4)."""
-    nu = scene.nu
-    inv_e = (1.0 - nu * nu) / scene.E
-    inv_g = (2.0 - nu) * 2.0 * (1.0 + nu) / scene.E
-    if scene.plate_E is not None:
-        nup = scene.plate_nu
-        inv_e += (1.0 - nup * nup) / scene.plate_E
-        inv_g += (2.0 - nup) * 2.0 * (1.0 + nup) / scene.plate_E
+    """E* and G* of the sphere on its plate or partner (docs/model.md 14.2, 14.4, 17.3)."""
+    bodies = [(scene.E, scene.nu)]
+    if scene.partner is not None:
+        bodies.append((scene.partner_E if scene.partner_E is not None else scene.E,
+                       scene.partner_nu if scene.partner_nu is not None else scene.nu))
+    elif scene.plate_E is not None:
+        bodies.append((scene.plate_E, scene.plate_nu))
+    inv_e = sum((1.0 - nu * nu) / e for e, nu in bodies)
+    inv_g = sum((2.0 - nu) * 2.0 * (1.0 + nu) / e for e, nu in bodies)
     return 1.0 / inv_e, 1.0 / inv_g
 
 
-def _body(scene: Any) -> tuple[bool, float, float]:
-    """(a sphere, its mass, its moment of inertia), as the engine takes them."""
-    r, sphere = scene.r, isinstance(scene.shape, Sphere)
-    mass = (4.0 / 3.0 * math.pi * r**3 if sphere else math.pi * r * r) * scene.rho
-    kappa = 0.5 if (not sphere and scene.inertia == "shape") else 0.4
-    return sphere, mass, kappa * mass * r * r
-
-
-def _hertz(scene: Any, mass: float, v_n: float) -> tuple[list[str], float]:
+def _hertz(scene: Any, contact: _Contact, v_n: float) -> tuple[list[str], float]:
     """The Hertz law's normal and tangential model words, and the contact time."""
     e_star, g_star = _moduli(scene)
     beta = _core.hertz_beta(scene.cor)
     if beta >= 1.0:
         raise _refuse("cor", scene.cor)
     e_lammps = math.exp(-math.pi * beta / math.sqrt(1.0 - beta * beta))
-    delta_max = (15.0 * mass * v_n * v_n / (16.0 * e_star * math.sqrt(scene.r))) ** 0.4
+    delta_max = (15.0 * contact.m_eff * v_n * v_n / (16.0 * e_star * math.sqrt(contact.r_eff))) ** 0.4
     words = [f"hertz {4.0 / 3.0 * e_star!r} {e_lammps!r} damping coeff_restitution"]
     if scene.tangential == "linear":
         if scene.gamma_t != 0.0 and scene.mu != 0.0:
@@ -141,81 +179,125 @@ def _hertz(scene: Any, mass: float, v_n: float) -> tuple[list[str], float]:
     return words, HERTZ_TIME * delta_max / v_n
 
 
-def _linear(scene: Any, mass: float, inertia: float) -> tuple[list[str], float]:
-    """The linear law's normal and tangential model words, and the contact time (undamped)."""
-    kn = scene.kn if scene.kn is not None else scene.E
-    cn = scene.cn if scene.cn is not None else 0.0
+def _linear(scene: Any, contact: _Contact) -> tuple[list[str], float]:
+    """The linear law's normal and tangential model words, and the contact time (undamped).
+    A pair's two springs and dashpots are in series: k* = kn / 2, c* = cn / 2 (17.3)."""
+    share = 0.5 if len(contact.masses) == 2 else 1.0
+    kn = share * (scene.kn if scene.kn is not None else scene.E)
+    cn = share * (scene.cn if scene.cn is not None else 0.0)
     kt = scene.kt if scene.kt is not None else 2.0 / 7.0 * kn
-    m_t = 1.0 / (1.0 / mass + scene.r**2 / inertia)
-    c_t = scene.gamma_t * math.sqrt(kt * m_t)
+    c_t = scene.gamma_t * math.sqrt(kt * contact.m_t)
     if c_t != 0.0 and cn == 0.0 and scene.mu != 0.0:
         raise _refuse("gamma_t", scene.gamma_t)
     x_t = c_t / cn if cn > 0.0 else 0.0
     words = [f"hooke {kn!r} {cn!r} damping velocity", f"tangential linear_history {kt!r} {x_t!r} {scene.mu!r}"]
-    return words, math.pi * math.sqrt(mass / kn)
+    return words, math.pi * math.sqrt(contact.m_eff / kn)
 
 
-def write(scene: Any, theta_deg: float, omega_in: float = 0.0, steps_per_contact: int | None = None) -> str:
-    """The LAMMPS input script of one impact of ``scene`` (see ``Scene.to_lammps``); None
-    steps: :data:`STEPS_PER_CONTACT`."""
-    steps_per_contact = STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
+def _check(scene: Any, theta_deg: float, spins: tuple[float, float], steps_per_contact: int) -> None:
+    """Refuses what LAMMPS cannot express and bad arguments, naming each."""
     _core.check_theta(float(theta_deg))
-    if not math.isfinite(omega_in):
-        raise RestitutionError("omega_in", omega_in, "finite (rad/s)")
-    if scene.partner is not None:
-        raise _refuse("partner", type(scene.partner).__name__)
+    for name, spin in zip(("omega_in", "partner_omega_in"), spins):
+        if not math.isfinite(spin):
+            raise RestitutionError(name, spin, "finite (rad/s)")
     if not isinstance(scene.shape, (Sphere, Disc)):
         raise _refuse("shape", type(scene.shape).__name__)
+    if scene.partner is not None and not isinstance(scene.partner, (Sphere, Disc)):
+        raise _refuse("partner", type(scene.partner).__name__)
     if scene.normal_law == "area":
         raise _refuse("normal_law", scene.normal_law)
     if isinstance(steps_per_contact, bool) or not isinstance(steps_per_contact, int) or steps_per_contact < 10:
         raise RestitutionError("steps_per_contact", steps_per_contact, "a whole number >= 10")
-    sphere, mass, inertia = _body(scene)
+
+
+def write(scene: Any, theta_deg: float, omega_in: float = 0.0, partner_omega_in: float = 0.0,
+          steps_per_contact: int | None = None) -> str:
+    """The LAMMPS input script of one impact of ``scene`` (see ``Scene.to_lammps``); None
+    steps: :data:`STEPS_PER_CONTACT`."""
+    steps_per_contact = STEPS_PER_CONTACT if steps_per_contact is None else steps_per_contact
+    _check(scene, theta_deg, (omega_in, partner_omega_in), steps_per_contact)
+    contact = _contact(scene)
     cos_t, sin_t = math.cos(math.radians(theta_deg)), math.sin(math.radians(theta_deg))
     if scene.normal_law == "hertz":
-        model, t_c = _hertz(scene, mass, scene.v * sin_t)
+        model, t_c = _hertz(scene, contact, scene.v * sin_t)
     else:
-        model, t_c = _linear(scene, mass, inertia)
-    dt = t_c / steps_per_contact
-    return _render(scene, sphere, mass, model, dt, steps_per_contact, float(theta_deg), float(omega_in),
-                   (scene.v * cos_t if theta_deg != 90.0 else 0.0, -scene.v * sin_t))
+        model, t_c = _linear(scene, contact)
+    lines = _header(float(theta_deg), float(omega_in), float(partner_omega_in), contact)
+    velocity = (scene.v * cos_t if theta_deg != 90.0 else 0.0, -scene.v * sin_t)
+    lines += _bodies(contact, velocity, (float(omega_in), float(partner_omega_in)))
+    lines += _law(model, contact, scene.inertia)
+    lines += _run(contact, t_c / steps_per_contact, steps_per_contact)
+    return "\n".join(lines) + "\n"
 
 
-def _render(scene: Any, sphere: bool, mass: float, model: list[str], dt: float, steps_per_contact: int,
-            theta_deg: float, omega_in: float, velocity: tuple[float, float]) -> str:
-    """The script's lines: the particle, the wall, the integrator, the run to separation and the
-    line :func:`restitution.lammps.simulate` reads."""
-    r = scene.r
-    box = 1000.0 * r
-    nve = "fix move all nve/sphere" + ("" if sphere or scene.inertia == "sphere" else " disc")
-    lines = [
-        f"# restitution: one impact, theta_deg = {theta_deg!r} (from the plate), omega_in = {omega_in!r} rad/s",
-        "# axes: the plate is y = 0, the particle above it, spin counter-clockwise about +z",
+def _header(theta_deg: float, omega_in: float, partner_omega_in: float, contact: _Contact) -> list[str]:
+    pair = len(contact.masses) == 2
+    return [
+        f"# restitution: one impact, theta_deg = {theta_deg!r} (from the "
+        + (f"tangent), omega_in = {omega_in!r}, partner_omega_in = {partner_omega_in!r} rad/s" if pair
+           else f"plate), omega_in = {omega_in!r} rad/s"),
+        "# axes: " + ("the partner (atom 2) at rest at the origin, the particle (atom 1) above it at first touch"
+                      if pair else "the plate is y = 0, the particle above it") + ", spin counter-clockwise about +z",
         "units si",
-        f"dimension {3 if sphere else 2}",
-        "boundary p f p",
+        f"dimension {3 if contact.sphere else 2}",
+        "boundary p p p" if pair else "boundary p f p",
         "atom_style sphere",
-        "atom_modify map array",
-        f"region box block {-box!r} {box!r} {-r!r} {box!r} " + (f"{-box!r} {box!r}" if sphere else "-0.5 0.5"),
-        "create_box 1 box",
-        f"create_atoms 1 single 0.0 {r!r} 0.0",
-        f"set atom 1 diameter {2.0 * r!r}",
-        f"set atom 1 mass {mass!r}",
-        f"velocity all set {velocity[0]!r} {velocity[1]!r} 0.0",
-        f"set atom 1 omega 0.0 0.0 {omega_in!r}",
-        f"comm_modify cutoff {4.0 * r!r}",
-        f"fix wall all wall/gran granular {' '.join(model)} limit_damping yplane 0.0 NULL",
-        nve,
-        *([] if sphere else ["fix flat all enforce2d"]),
+        "atom_modify map array sort 0 0.0",
+        "comm_modify vel yes",  # the granular pair reads its neighbour's velocity
+    ]
+
+
+def _bodies(contact: _Contact, velocity: tuple[float, float], spins: tuple[float, float]) -> list[str]:
+    """The box, the particle touching the plate (or its partner) and their state."""
+    reach = sum(contact.radii) if len(contact.radii) == 2 else contact.radii[0]
+    box = 20.0 * reach  # the bodies move a fraction of a radius during the contact
+    z = f"{-box!r} {box!r}" if contact.sphere else "-0.5 0.5"
+    lines = [f"region box block {-box!r} {box!r} {-contact.radii[0]!r} {box!r} {z}",
+             "create_box 1 box", f"create_atoms 1 single 0.0 {reach!r} 0.0"]
+    if len(contact.radii) == 2:
+        lines[0] = f"region box block {-box!r} {box!r} {-box!r} {box!r} {z}"
+        lines.append("create_atoms 1 single 0.0 0.0 0.0")
+    for k, (radius, mass) in enumerate(zip(contact.radii, contact.masses), start=1):
+        lines += [f"set atom {k} diameter {2.0 * radius!r}", f"set atom {k} mass {mass!r}",
+                  f"set atom {k} omega 0.0 0.0 {spins[k - 1]!r}"]
+    lines += ["group particle id 1", "group partner id 2", f"velocity particle set {velocity[0]!r} {velocity[1]!r} 0.0"]
+    return lines
+
+
+def _law(model: list[str], contact: _Contact, inertia: str) -> list[str]:
+    """The contact law: a wall for the plate, a granular pair for a partner; the integrator."""
+    if len(contact.radii) == 2:
+        lines = ["pair_style granular", f"pair_coeff * * {' '.join(model)} limit_damping",
+                 f"neighbor {0.5 * min(contact.radii)!r} bin", "neigh_modify every 1 delay 0 check yes"]
+    else:
+        lines = [f"comm_modify cutoff {4.0 * contact.radii[0]!r}",
+                 f"fix wall all wall/gran granular {' '.join(model)} limit_damping yplane 0.0 NULL"]
+    lines.append("fix move all nve/sphere" + ("" if contact.sphere or inertia == "sphere" else " disc"))
+    return lines + ([] if contact.sphere else ["fix flat all enforce2d"])
+
+
+def _run(contact: _Contact, dt: float, steps_per_contact: int) -> list[str]:
+    """The step, the run halted at separation, and the line :func:`restitution.lammps.simulate` reads."""
+    if len(contact.radii) == 2:
+        reach = sum(contact.radii)
+        gap = [f"variable gap equal sqrt((x[1]-x[2])^2+(y[1]-y[2])^2)-{reach!r}",
+               "variable opening equal ((x[1]-x[2])*(vx[1]-vx[2])+(y[1]-y[2])*(vy[1]-vy[2]))"
+               f"/(v_gap+{reach!r})"]
+    else:
+        gap = [f"variable gap equal y[1]-{contact.radii[0]!r}", "variable opening equal vy[1]"]
+    partner = (" partner_vx_out=$(vx[2]:%.17g) partner_vy_out=$(vy[2]:%.17g) partner_omega_out=$(c_partner_omega:%.17g)"
+               if len(contact.radii) == 2 else "")
+    return [
         f"timestep {dt!r}",
         "compute spin all property/atom omegaz",
-        "compute omega all reduce sum c_spin",
-        f"variable separated equal (y[1]>{r!r})*(vy[1]>0.0)",
+        "compute omega particle reduce sum c_spin",
+        "compute partner_omega partner reduce sum c_spin",
+        *gap,
+        "variable separated equal (v_gap>0.0)*(v_opening>0.0)",
         "fix halt all halt 1 v_separated > 0.5 error continue",
         "thermo_style custom step time",
         f"run {RUN_CONTACTS * steps_per_contact}",
-        "run 0 post no",  # makes the spin's compute current for the print below
-        f'print "restitution: vx_out=$(vx[1]:%.17g) vy_out=$(vy[1]:%.17g) omega_out=$(c_omega:%.17g) '
-        f'contact_time=$(time-(y[1]-{r!r})/vy[1]:%.17g)"',
+        "run 0 post no",  # makes the spins' computes current for the print below
+        'print "restitution: vx_out=$(vx[1]:%.17g) vy_out=$(vy[1]:%.17g) omega_out=$(c_omega:%.17g) '
+        'contact_time=$(time-v_gap/v_opening:%.17g)' + partner + '"',
     ]
-    return "\n".join(lines) + "\n"
