@@ -134,7 +134,9 @@ def figure(df: pl.DataFrame, cross: pl.DataFrame, path: Path) -> None:
         if row["theta_star_mkp_deg"] == row["theta_star_mkp_deg"]:
             ax.axvline(row["theta_star_mkp_deg"], color="r", ls=":", label=r"$\theta^*$ criterion")
         ax.axhline(0.0, color="0.6", lw=0.5)
-        ax.set(xscale="log", title=label, xlabel=r"$\theta$ (deg, from the tangent)")
+        ax.set(xscale="log", title=label)
+    for ax in axes[1]:  # the columns share their x axis: labelled once, below
+        ax.set_xlabel(r"$\theta$ (deg, from the tangent)")
     axes[0, 0].set_ylabel("restitution")
     axes[1, 0].set_ylabel("restitution")
     axes[0, 0].legend(fontsize=7)
