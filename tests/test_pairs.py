@@ -135,7 +135,7 @@ def test_chung_ooi_test8_sliding_branch_is_rigid_body_theory() -> None:
     assert (slow["recoil"].abs() < 0.05).all()
 
 
-def test_negative_e_n_map_obeys_the_exact_criterion_and_reports_the_estimate(tmp_path) -> None:
+def test_negative_e_n_map_obeys_the_exact_criterion_and_reports_the_estimate(tmp_path, capsys) -> None:
     """The map's frictionless cases: e_n < 0 exactly where tan|dpsi| > e_n_sep tan(theta) (the
     identity of docs/model.md 17.4); every case turns negative at grazing incidence, friction
     lowers the threshold (Müller, Krengel & Pöschel: less pronounced with friction), and the CLI
@@ -156,7 +156,10 @@ def test_negative_e_n_map_obeys_the_exact_criterion_and_reports_the_estimate(tmp
     for law in ("area elastic", "area damped", "linear elastic", "linear damped"):
         t = dict(zip(cross["case"], cross["theta_star_deg"]))
         assert t[f"{law} mu 0.5"] < t[f"{law} mu 0"], law
+    capsys.readouterr()
     assert cli.main(["pairs", "--out", str(tmp_path)]) == 0
+    printed = capsys.readouterr().out.splitlines()  # a short summary; the tables are in report.md
+    assert len(printed) <= 4 and "report.md" in printed[0] and "theta*" in printed[1], printed
     assert (tmp_path / "negative_e_n.png").stat().st_size > 20_000
     assert "criterion" in (tmp_path / "report.md").read_text()
 

@@ -135,3 +135,6 @@ def test_validate_writes_figures(tmp_path):
     names = {p.name for p in paths}
     assert {"test4.png", "kharaz.png", "test6.png", "test4_histories.png", "report.md"} <= names
     assert "Test 4 per history of Mindlin's spring" in (tmp_path / "report.md").read_text()
+    # The terminal gets a few lines, each closed-form check against its bound; report.md the rest.
+    lines = validate.summary(tmp_path)
+    assert len(lines) == 4 and all(line.endswith(": pass") for line in lines[:3]), lines

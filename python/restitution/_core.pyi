@@ -15,10 +15,12 @@ __all__ = [
     "RECORD_COLUMNS",
     "TRACE_COLUMNS",
     "__version__",
+    "check_case",
     "check_cases",
     "check_shape",
     "check_theta",
     "convex_template",
+    "hertz_beta",
     "last_call_diagnostics",
     "max_dt_factor_for",
     "run_case",
@@ -49,6 +51,14 @@ def check_cases(
     partner_vertices: npt.NDArray[np.float64] | None = None,
 ) -> None:
     """Every rule of every case, without running it; raises naming the first bad case."""
+
+def check_case(
+    row: Sequence[float],
+    vertices: npt.NDArray[np.float64] | None,
+    partner_vertices: npt.NDArray[np.float64] | None = None,
+) -> None:
+    """Every rule of the one case of ``row`` (a value per ``CASE_COLUMNS`` name, in order),
+    without running it; raises ``RestitutionError`` naming the parameter."""
 
 def run_case(
     row: Sequence[float],
@@ -84,6 +94,9 @@ def check_theta(theta_deg: float) -> None:
 
 def convex_template(vertices: npt.NDArray[np.float64]) -> tuple[npt.NDArray[np.float64], float]:
     """A convex polygon checked by the engine: (vertices about the centroid over the circumradius, circumradius)."""
+
+def hertz_beta(cor: float) -> float:
+    """The Hertz law's damping ratio beta calibrated to the head-on restitution ``cor`` (in [0.01, 1])."""
 
 def last_call_diagnostics() -> dict[str, float | int]:
     """Diagnostics of the last engine call on this thread (``run_cases``, ``run_case``, ``trace_case``):

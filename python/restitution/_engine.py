@@ -72,6 +72,8 @@ def _found(value: Any) -> str:
 
 def real(name: str, value: Any) -> float:
     """A real number (bool and str refused: :func:`is_real`) as float; the engine checks its range."""
+    if type(value) is float:  # the common case, without the checks below (a scene's hot path)
+        return value
     if not is_real(value):
         raise RestitutionTypeError(name, _found(value), REAL)
     return float(value)
@@ -180,6 +182,13 @@ def check(cols: Mapping[str, np.ndarray], vertices: Templates) -> None:
     the parameter, its value and the case (the row of ``cols``)."""
     own, partner = _split(vertices)
     _core.check_cases(cols, own, partner_vertices=partner)
+
+
+def check_one(row: Sequence[float], vertices: Templates) -> None:
+    """Every rule of the one case of ``row`` (in ``CASE_COLUMNS`` order), without running it:
+    raises :class:`RestitutionError` naming the parameter and its value."""
+    own, partner = _split(vertices)
+    _core.check_case(row, own, partner_vertices=partner)
 
 
 def run(cols: Mapping[str, np.ndarray], vertices: Templates, threads: int) -> dict[str, np.ndarray]:

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+import inspect
+from dataclasses import dataclass
 from typing import Any
 
 from . import _engine
@@ -22,6 +23,62 @@ TANGENTIALS = _engine.CHOICES["tangential"]
 #: displacement ("mindlin") or the elastic force ("mindlin/force"), each also rescaled with the
 #: contact radius as the contact unloads ("mindlin_rescale", "mindlin_rescale/force").
 TANGENTIAL_HISTORIES = _engine.CHOICES["tangential_history"]
+
+
+def _choice(name: str, value: Any) -> float:
+    return float(_engine.code(name, value))
+
+
+def _conversion(name: str) -> Any:
+    """How a scene field becomes its engine column's value (each checks the field's type)."""
+    if name in _engine.CHOICES:
+        return _choice
+    if name in _engine.FLAGS:
+        return _engine.flag
+    return _engine.optional if name in _engine.OPTIONAL else _engine.real
+
+
+#: The engine columns computed from the shapes (and the impact's, set by each simulate); every
+#: other column is the scene's field of that name.
+_COMPUTED = ("theta_deg", "omega_in", "r", "n", "phi0_deg", "body", "partner_body", "partner_n", "partner_r",
+             "partner_phi0_deg", "partner_omega_in")
+_FIELDS = tuple(name for name in _engine.CASE_COLUMNS if name not in _COMPUTED)
+_CONVERSIONS = tuple((name, _conversion(name)) for name in _FIELDS)
+#: Each field's kind (0 real, 1 optional, 2 choice, 3 flag) beside its conversion, and the
+#: choices' codes by name: what lets :func:`_field_values` take the usual values without a call.
+_PLAN = tuple((name, (_engine.real, _engine.optional, _choice, _engine.flag).index(convert), convert)
+              for name, convert in _CONVERSIONS)
+_CODES = {name: {label: float(k) for k, label in enumerate(labels)} for name, labels in _engine.CHOICES.items()}
+_NAN = float("nan")
+
+
+def _field_values(fields: dict[str, Any]) -> dict[str, float]:
+    """The engine value of each field of a scene's ``fields``. The usual values (a float, None
+    for an optional, a known choice's name) are taken inline, the conversions' own first tests;
+    anything else goes through its conversion, which checks it and names it. A call per field
+    was a third of a scene's cost."""
+    out: dict[str, float] = {}
+    for name, kind, convert in _PLAN:
+        value = fields[name]
+        if type(value) is float:
+            if kind <= 1 and value == value:  # a real, or a set optional (an explicit NaN is refused)
+                out[name] = value
+                continue
+        elif value is None:
+            if kind == 1:
+                out[name] = _NAN
+                continue
+        elif kind == 2 and type(value) is str:
+            code = _CODES[name].get(value)
+            if code is not None:
+                out[name] = code
+                continue
+        out[name] = convert(name, value)
+    return out
+
+
+#: The preset particle (shapes are frozen, so one instance serves every scene).
+_PRESET_DISC = Disc(r=0.01)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -43,7 +100,7 @@ class Scene:
     1.0
     """
 
-    shape: Shape = field(default_factory=lambda: Disc(r=0.01))
+    shape: Shape = _PRESET_DISC
     """Particle shape: ``Disc``, ``RegularPolygon``, ``ConvexPolygon`` (2D, per unit depth) or
     ``Sphere`` (3D, per particle; Hertz or linear law)."""
     rho: float = 2500.0
@@ -136,13 +193,14 @@ class Scene:
             raise TypeError("`partner` must be None (the plate), Disc, RegularPolygon, ConvexPolygon or Sphere "
                             f"(found {type(self.partner).__name__})")
         values = self.engine_values()
+        row = tuple(map(values.__getitem__, _engine.CASE_COLUMNS))
         try:
-            _engine.check(_engine.columns(values, {}, 1), self.template_vertices())
+            _engine.check_one(row, self.template_vertices())
         except _engine.RestitutionError as err:
             raise err.at_case(None) from None  # a scene is not a case of a sweep
         # Its row of engine columns, kept (the scene is frozen): each simulate() writes only
         # its angle and spin into a copy.
-        object.__setattr__(self, "_row", _engine.row(values))
+        object.__setattr__(self, "_row", row)
 
     def engine_values(self) -> dict[str, float]:
         """The scene's value of every engine column (``theta_deg`` 90 and ``omega_in`` 0 until
@@ -153,18 +211,7 @@ class Scene:
                                     "body": float(_engine.code("body", "sphere" if isinstance(self.shape, Sphere)
                                                                else "prism")),
                                     **self._partner_values()}
-        for name in _engine.CASE_COLUMNS:
-            if name in values:
-                continue
-            value = getattr(self, name)
-            if name in _engine.CHOICES:
-                values[name] = float(_engine.code(name, value))
-            elif name in _engine.FLAGS:
-                values[name] = _engine.flag(name, value)
-            elif name in _engine.OPTIONAL:
-                values[name] = _engine.optional(name, value)
-            else:
-                values[name] = _engine.real(name, value)
+        values.update(_field_values(self.__dict__))
         return values
 
     def _partner_values(self) -> dict[str, float]:
@@ -205,7 +252,43 @@ class Scene:
 
     def replace(self, **changes: Any) -> Scene:
         """A validated copy with some fields changed."""
-        return dataclasses.replace(self, **changes)
+        unknown = changes.keys() - _FIELD_NAMES
+        if unknown:  # what dataclasses.replace would say
+            raise TypeError(f"Scene.__init__() got an unexpected keyword argument '{sorted(unknown)[0]}'")
+        # The copy's fields set directly and checked by __post_init__, as a new Scene's are:
+        # dataclasses.replace reads every field and calls the frozen __init__, which sets each
+        # one through object.__setattr__ (two thirds of a replace's cost).
+        copy = object.__new__(Scene)
+        state = copy.__dict__
+        state.update(self.__dict__)
+        state.update(changes)
+        copy.__post_init__()
+        return copy
+
+    def to_lammps(self, theta_deg: float, omega_in: float = 0.0, *, partner_omega_in: float = 0.0,
+                  steps_per_contact: int | None = None) -> str:
+        """A complete LAMMPS input script (units si) of this scene's impact at ``theta_deg``
+        (from the plate) with spin ``omega_in``: the particle, the plate as a ``fix wall/gran
+        granular`` wall with this scene's law (a Disc or Sphere partner: a second atom, spin
+        ``partner_omega_in``, and ``pair_style granular``), the step (the estimated contact time over
+        ``steps_per_contact``, None: 1000), a run to separation, and a last line
+        ``restitution: vx_out=... vy_out=... omega_out=... contact_time=...`` in this project's
+        axes and signs. What LAMMPS cannot express (the area law, polygons) raises
+        :class:`RestitutionError` naming the field and why. The mapping: docs/lammps.md,
+        ``restitution.lammps.MAPPING``.
+
+        Examples
+        --------
+        >>> import restitution as rs
+        >>> ball = rs.Scene(shape=rs.Sphere(2.5e-3), normal_law="hertz", E=380e9, nu=0.23, rho=4000.0,
+        ...                 cor=0.98, mu=0.092, v=3.9)
+        >>> script = ball.to_lammps(theta_deg=60.0)
+        >>> "damping coeff_restitution tangential mindlin/force" in script
+        True
+        """
+        from .lammps.script import write
+
+        return write(self, theta_deg, omega_in, partner_omega_in, steps_per_contact)
 
     @property
     def max_dt_factor(self) -> float:
@@ -226,3 +309,28 @@ class Scene:
 #: ``Scene()``; ``Scene.paper()`` (the 120-gon) is within 0.2 %. Another scene's own bound,
 #: which depends on its stiffness and damping, is ``scene.max_dt_factor``.
 MAX_DT_FACTOR = {name: Scene(integrator=name).max_dt_factor for name in INTEGRATORS}
+
+#: Every field's default (each a plain value: shapes are frozen), hence every field's name.
+_DEFAULTS = {f.name: f.default for f in dataclasses.fields(Scene)}
+_FIELD_NAMES = frozenset(_DEFAULTS)
+_DATACLASS_INIT = Scene.__init__
+
+
+def _init(self: Scene, **fields: Any) -> None:
+    # The generated __init__ of a frozen dataclass sets each of the 28 fields through
+    # object.__setattr__: 5 of a scene's 12 us. This one sets them in two dict updates and runs
+    # the same __post_init__; the signature (for help() and IDEs) and the refusal of an unknown
+    # name are the generated one's. Type checkers and the docs read the fields, as before.
+    unknown = fields.keys() - _FIELD_NAMES
+    if unknown:
+        raise TypeError(f"Scene.__init__() got an unexpected keyword argument '{sorted(unknown)[0]}'")
+    state = self.__dict__
+    state.update(_DEFAULTS)
+    state.update(fields)
+    self.__post_init__()
+
+
+_init.__signature__ = inspect.signature(_DATACLASS_INIT)  # type: ignore[attr-defined]
+_init.__doc__ = _DATACLASS_INIT.__doc__
+_init.__name__, _init.__qualname__ = "__init__", "Scene.__init__"
+Scene.__init__ = _init  # type: ignore[method-assign]

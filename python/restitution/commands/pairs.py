@@ -21,7 +21,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..study.pair_map import write_map
+    from ..study.pair_map import summary, write_map
     from ..study.polygon_pair_map import write_polygon_map
 
     start = time.perf_counter()
@@ -31,6 +31,7 @@ def run(args: argparse.Namespace) -> int:
         paths += more
         with (args.out / "report.md").open("a") as f:
             f.write(text)
-    print((args.out / "report.md").read_text())
-    print(f"pairs: {time.perf_counter() - start:.1f} s; wrote {', '.join(str(p) for p in paths)}")
+    print(f"pairs: {time.perf_counter() - start:.1f} s; wrote {len(paths)} files (tables, figures) to {args.out}; "
+          f"the full report: {args.out / 'report.md'}")
+    print("\n".join(summary(args.out)))
     return 0

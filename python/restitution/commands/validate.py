@@ -18,10 +18,11 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..study.validate import write_validation
+    from ..study.validate import summary, write_validation
 
     start = time.perf_counter()
     paths = write_validation(args.out)
-    print((args.out / "report.md").read_text())
-    print(f"validate: {time.perf_counter() - start:.1f} s; wrote {', '.join(str(p) for p in paths)}")
+    print(f"validate: {time.perf_counter() - start:.1f} s; wrote {len(paths)} files (tables, figures) to "
+          f"{args.out}; the full report: {args.out / 'report.md'}")
+    print("\n".join(summary(args.out)))
     return 0

@@ -169,7 +169,8 @@ class Ensemble:
         if x not in self.point_names:
             raise ValueError(f"require `x` a swept axis: one of {list(self.point_names)} (found {x!r})")
         s = summary if summary is not None else self.summary(quantities, n_boot=0)
-        return quantile_ribbons(s, list(quantities), x=x, group=[c for c in self.point_names if c != x], path=path)
+        return quantile_ribbons(s, list(quantities), x=x, group=[c for c in self.point_names if c != x], path=path,
+                                title=f"Ensemble of {self.n} draws per point: median, 25-75 % and 5-95 % quantiles")
 
     def plot_histograms(self, quantity: str = "e_t", *, at: Sequence[float] | None = None, x: str = "theta_deg",
                         bins: int = 40, path: Any = None) -> Any:

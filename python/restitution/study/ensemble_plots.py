@@ -17,9 +17,10 @@ _LABELS = {"theta_deg": THETA_LABEL}
 
 
 def quantile_ribbons(summary: pl.DataFrame, quantities: list[str], *, x: str, group: list[str],
-                     path: Any = None) -> Any:
+                     path: Any = None, title: str | None = None) -> Any:
     """One panel per quantity: the median against ``x``, 25-75 % (dark) and 5-95 % (light)
-    ribbons, one colour per combination of the ``group`` columns."""
+    ribbons, one colour per combination of the ``group`` columns; ``title`` above them (None:
+    what the figure shows, in words)."""
     plt = _plt()
     fig, axes = plt.subplots(1, len(quantities), figsize=(4.2 * len(quantities), 3.6), squeeze=False)
     curves = summary.partition_by(group, maintain_order=True) if group else [summary]
@@ -37,6 +38,7 @@ def quantile_ribbons(summary: pl.DataFrame, quantities: list[str], *, x: str, gr
         ax.set_xlabel(_LABELS.get(x, x))
         ax.set_ylabel(_label(q))
     axes[0][0].legend(title="median; 25-75 %, 5-95 %", loc="best")
+    fig.suptitle(title if title is not None else f"Ensemble: median and quantiles against {_LABELS.get(x, x)}")
     fig.tight_layout()
     _save(fig, path)
     return fig

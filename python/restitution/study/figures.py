@@ -212,7 +212,7 @@ def fig4(crit: pl.DataFrame, fits: dict[str, ExpFit], *, theory_e_n: float | Non
     en_c = np.interp(gpos, mu, c["e_n_at_theta_c"].to_numpy()) if theory_e_n is None else theory_e_n
     ax.plot(gpos, theory.theta_c(gpos, en_c), **THEORY_STYLE, label=r"rigid body: $\tan\theta_c = 1 / (3\mu(1+e_N))$")
     ax.set_xlabel(r"friction coefficient $\mu$")
-    ax.set_ylabel(r"critical angle $\theta_c$ (deg)")
+    ax.set_ylabel(r"critical angle $\theta_c$ (deg, from the plate)")
     ax.set_xlim(0, grid[-1])
     ax.set_ylim(0, 92)
     ax.set_title("(a)", loc="left")

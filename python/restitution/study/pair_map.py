@@ -134,7 +134,9 @@ def figure(df: pl.DataFrame, cross: pl.DataFrame, path: Path) -> None:
         if row["theta_star_mkp_deg"] == row["theta_star_mkp_deg"]:
             ax.axvline(row["theta_star_mkp_deg"], color="r", ls=":", label=r"$\theta^*$ criterion")
         ax.axhline(0.0, color="0.6", lw=0.5)
-        ax.set(xscale="log", title=label, xlabel=r"$\theta$ (deg)")
+        ax.set(xscale="log", title=label)
+    for ax in axes[1]:  # the columns share their x axis: labelled once, below
+        ax.set_xlabel(r"$\theta$ (deg, from the tangent)")
     axes[0, 0].set_ylabel("restitution")
     axes[1, 0].set_ylabel("restitution")
     axes[0, 0].legend(fontsize=7)
@@ -155,6 +157,26 @@ def write_map(out: Path, angles: np.ndarray = ANGLES) -> list[Path]:
     figure(df, cross, paths[2])
     paths[3].write_text(report(cross))
     return paths
+
+
+def summary(out: Path) -> list[str]:
+    """The headline of a map written to ``out`` (a few lines for the terminal; the rest is in
+    ``report.md``): the discs' measured thresholds against the criterion's, and the polygons'
+    half-negative angles when they were drawn."""
+    cross = pl.read_parquet(out / "negative_e_n_thresholds.parquet")
+    ratio = cross["ratio"].drop_nans()
+    lines = [f"two discs: e_n turns negative below theta* = {cross['theta_star_deg'].min():.3g} ... "
+             f"{cross['theta_star_deg'].max():.3g} deg (from the tangent) over {cross.height} cases; "
+             f"measured / criterion {ratio.min():.3f} ... {ratio.max():.3f} ({ratio.len()} cases with a criterion)"]
+    polygons = out / "negative_e_n_polygons_summary.parquet"
+    if polygons.exists():
+        from .polygon_pair_map import half_negative_angle
+
+        stats = pl.read_parquet(polygons)
+        halves = [f"{case} {half_negative_angle(sub.sort('theta_deg')):.3g}"
+                  for (case,), sub in stats.group_by("case", maintain_order=True)]
+        lines.append("two polygons, theta_half (deg): " + ", ".join(halves))
+    return lines
 
 
 def report(cross: pl.DataFrame) -> str:

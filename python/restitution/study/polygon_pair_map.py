@@ -94,7 +94,8 @@ def figure(stats: pl.DataFrame, path: Path) -> None:
         ax.axhline(0.0, color="0.6", lw=0.5)
         # At grazing incidence a corner turns tangential motion into normal: e_n's upper
         # quantiles reach tens (the report gives them); the axis shows the sign change.
-        ax.set(xscale="log", title=label, xlabel=r"$\theta$ (deg)", ylim=(-1.2, 2.5))
+        ax.set(xscale="log", title=label, xlabel=r"$\theta$ (deg, from the tangent)", ylim=(-1.2, 2.5))
+    axes[0].set_ylabel(r"$e_n$, $e_{n,sep}$, P($e_n$ < 0)")
     axes[0].legend(fontsize=7)
     fig.suptitle(f"Two polygons at random orientations, v = {SPEED:g} m/s")
     fig.savefig(path, bbox_inches="tight")

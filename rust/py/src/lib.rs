@@ -440,6 +440,20 @@ fn check_cases<'py>(
         .map_err(|(i, e)| PyCoreError(e, Some(i)).into())
 }
 
+/// Checks every rule of the one case of `row` (a value per name of `CASE_COLUMNS`, in that
+/// order) without running it: what a `Scene` does once when it is built, without a column per
+/// value (one array per column made that a third of the scene's cost).
+#[pyfunction]
+#[pyo3(signature = (row, vertices, partner_vertices=None))]
+fn check_case<'py>(
+    row: [f64; core::CASE_COLUMNS.len()],
+    vertices: Option<PyReadonlyArray2<'py, f64>>,
+    partner_vertices: Option<PyReadonlyArray2<'py, f64>>,
+) -> PyResult<()> {
+    let case = read_case(row, (vertices, partner_vertices))?;
+    core::check_case(&case.scene, &case.init).map_err(|e| PyCoreError(e, None).into())
+}
+
 /// Trace columns, in the order `trace_case` returns them.
 const TRACE_COLUMNS: [&str; 15] = [
     "t",
@@ -540,6 +554,18 @@ fn check_theta(theta_deg: f64) -> PyResult<()> {
     core::check_theta(theta_deg).map_err(|e| PyCoreError(e, None).into())
 }
 
+/// The Hertz law's damping ratio beta calibrated so that the head-on restitution is `cor`
+/// (docs/model.md, section 14.3): what a translation into another code's damping needs.
+#[pyfunction]
+fn hertz_beta(cor: f64) -> PyResult<f64> {
+    let beta = core::model::hertz::beta_for_cor(cor);
+    if beta.is_nan() {
+        let expected = format!("in [{}, 1]", core::model::hertz::MIN_COR);
+        return Err(PyCoreError(core::Error::invalid("cor", cor, expected), None).into());
+    }
+    Ok(beta)
+}
+
 /// A convex polygon's vertices (counter-clockwise, any origin), checked by the engine, as
 /// (the body-frame vertices about the centroid divided by the circumradius, the circumradius).
 #[pyfunction]
@@ -572,8 +598,8 @@ fn choices(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
 mod _core {
     #[pymodule_export]
     use super::{
-        check_cases, check_shape, check_theta, convex_template, last_call_diagnostics,
-        max_dt_factor_for, run_case, run_cases, trace_case,
+        check_case, check_cases, check_shape, check_theta, convex_template, hertz_beta,
+        last_call_diagnostics, max_dt_factor_for, run_case, run_cases, trace_case,
     };
 
     #[pymodule_init]
