@@ -2,8 +2,8 @@
 
 Fits Hertz-Mindlin to Kharaz et al. (2001)'s e_t and rebound spin (rs.datasets.kharaz2001(), 20
 points) with 2 free fields (mu, nu) and with 4: (mu, nu, cor, plate_nu), and (mu, nu, plate_nu,
-plate_E) where cor stays fixed (a per-case cor solves its damping per impact: issue 39 item 8,
-part A), each run until the fit's convergence tests pass (chain > 50 tau, ESS >= 400, split R-hat
+plate_E) (a per-case cor costs what a per-case mu does: the damping's calibration is a table
+lookup, docs/model.md 14.3), each run until the fit's convergence tests pass (chain > 50 tau, ESS >= 400, split R-hat
 <= 1.01). Prints, per run, the seconds, iterations, impacts, the cost per impact and the medians.
 Targets: 2 free <= 10 s, 4 free <= 60 s on 2 cores.
 
