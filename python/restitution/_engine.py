@@ -135,12 +135,12 @@ def integer(name: str, value: Any, minimum: int) -> int:
 def code(name: str, value: Any) -> int:
     """The engine's code of a choice's name."""
     names = CHOICES[name]
+    if isinstance(value, str) and value in names:  # the hot path: a scene's few choices, no message built
+        return names.index(value)
     allowed = "one of " + ", ".join(f'"{c}"' for c in names)
     if not isinstance(value, str):
         raise RestitutionTypeError(name, _found(value), f"a name, {allowed}")
-    if value not in names:
-        raise RestitutionError(name, repr(value), allowed)
-    return names.index(value)
+    raise RestitutionError(name, repr(value), allowed)
 
 
 def columns(base: Mapping[str, float], per_case: Mapping[str, np.ndarray], n: int) -> dict[str, np.ndarray]:
