@@ -193,7 +193,7 @@ impl<S: Stepper, C: Side> FixedLoop<S, C> {
             C::push(tr, 0.0, (&q_in, &v_in), &C::Out::default(), 0.0, 0.0);
         }
         loop {
-            cancel.poll(self.steps)?;
+            cancel.poll_every(self.steps, self.side.poll_stride())?;
             if let Some(stop) = self.budget_spent() {
                 self.rec.stop = stop;
                 break;

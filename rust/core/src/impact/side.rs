@@ -7,6 +7,7 @@
 
 use super::flight::Approach;
 use super::record::{separation_normal, Bodies, Ending, Record, Trace};
+use crate::cancel::POLL_STEPS;
 use crate::geometry::pair::PairGeometry;
 use crate::integrate::events::{self, BranchStart, EventControl};
 use crate::integrate::{LaneForces, Lanes, Stepper};
@@ -46,6 +47,11 @@ pub(crate) trait Side {
     fn spring(&self) -> &TangentialSpring;
     /// The circumradius that scales the step control's tolerance.
     fn radius(&self) -> f64;
+    /// Steps between two polls of the cancel token (a power of two, see
+    /// [`Cancel::poll_every`]).
+    ///
+    /// [`Cancel::poll_every`]: crate::cancel::Cancel::poll_every
+    fn poll_stride(&self) -> u64;
     /// Appends a step to the trace.
     fn push(tr: &mut Trace, t: f64, qv: (&Lanes, &Lanes), f: &Self::Out, depth: f64, xi: f64);
     /// Completes `rec` from the final lanes (`q`, `v`) and the normal where the last contact
@@ -196,6 +202,11 @@ impl<G: PlateGeometry> Side for PlateSide<'_, G> {
         self.model.r
     }
 
+    #[inline(always)]
+    fn poll_stride(&self) -> u64 {
+        POLL_STEPS
+    }
+
     fn push(tr: &mut Trace, t: f64, (q, v): (&Lanes, &Lanes), f: &Forces, depth: f64, xi: f64) {
         tr.push(t, &[q[0], q[1], q[2]], &[v[0], v[1], v[2]], f, depth, xi);
     }
@@ -234,6 +245,16 @@ impl<G: PlateGeometry> Side for PlateSide<'_, G> {
     }
 }
 
+/// Steps between two polls of the cancel token for a pair whose steps evaluate its law about
+/// `per_step` times: the plate's [`POLL_STEPS`] over the cost of an evaluation relative to the
+/// plate's, about linear in the two bodies' corners (their intersection), so that a pair
+/// polls about as often in time as the plate does (about every millisecond).
+pub(crate) fn poll_stride(pair: &Pair, per_step: u64) -> u64 {
+    let corners = pair.particle.scene.shape.vertices().len() + pair.partner_shape.vertices().len();
+    let work = (1 + corners as u64 / 4) * per_step;
+    (POLL_STEPS / work.next_power_of_two()).max(1)
+}
+
 /// A free partner: the pair's contact on the relative motion and both rotations.
 pub(crate) struct PairSide<'a, G> {
     pair: &'a Pair,
@@ -242,6 +263,8 @@ pub(crate) struct PairSide<'a, G> {
     l0: f64,
     /// The centres' distance at first touch.
     y0: f64,
+    /// Steps between two polls of the cancel token (`poll_stride`).
+    poll_stride: u64,
 }
 
 impl<'a, G: PairGeometry> PairSide<'a, G> {
@@ -252,6 +275,7 @@ impl<'a, G: PairGeometry> PairSide<'a, G> {
             contact: PairContact::new(&pair.law, geometry),
             l0: pair.angular_momentum(q0, v0),
             y0: q0[1],
+            poll_stride: poll_stride(pair, 1),
         }
     }
 
@@ -336,6 +360,10 @@ impl<G: PairGeometry> Side for PairSide<'_, G> {
 
     fn radius(&self) -> f64 {
         self.pair.law.r
+    }
+
+    fn poll_stride(&self) -> u64 {
+        self.poll_stride
     }
 
     fn push(tr: &mut Trace, t: f64, (q, v): (&Lanes, &Lanes), f: &PairForces, _d: f64, xi: f64) {

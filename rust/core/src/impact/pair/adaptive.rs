@@ -26,6 +26,7 @@ use crate::impact::flight::{self, Approach, Jump};
 use crate::impact::record::{
     separation_normal, Bodies, Ending, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES,
 };
+use crate::impact::side::poll_stride;
 use crate::integrate::dopri::{root_error_ratio, DenseStep};
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, NormalLaw, Pair};
@@ -57,8 +58,10 @@ pub(super) fn integrate<G: PairGeometry>(
         run.push(tr);
     }
     let mut step = DenseStep::<NS, NS>::default();
+    // An attempt evaluates the law at 7 stages and more where it locates a switch.
+    let stride = poll_stride(pair, 16);
     let stop = loop {
-        cancel.poll(run.attempts)?;
+        cancel.poll_every(run.attempts, stride)?;
         if run.attempts >= max_steps {
             break StopReason::StepBudget;
         }
