@@ -129,7 +129,6 @@ pub(crate) struct FixedLoop<S, C: Side> {
     stepper: S,
     dt: f64,
     limits: Limits,
-    inv_mass: Lanes,
     /// Steps located on events and refined where the force changes within a step
     /// ([`Side::wants_events`]).
     events: bool,
@@ -156,7 +155,6 @@ impl<S: Stepper, C: Side> FixedLoop<S, C> {
     pub(crate) fn new(side: C, stepper: S, dt: f64, limits: &Limits) -> Self {
         let events = side.wants_events();
         FixedLoop {
-            inv_mass: side.inv_mass(),
             side,
             stepper,
             dt,
@@ -252,11 +250,12 @@ impl<S: Stepper, C: Side> FixedLoop<S, C> {
         let dt = self.dt;
         let (f, h, restarted) = match self.control.as_mut() {
             None => {
+                let inv_mass = self.side.inv_mass();
                 let law = OnSide {
                     side: &mut self.side,
                     dt,
                 };
-                (self.stepper.advance(dt, &self.inv_mass, law), dt, None)
+                (self.stepper.advance(dt, &inv_mass, law), dt, None)
             }
             Some(c) => self.side.event_step(c, &mut self.stepper),
         };
@@ -273,9 +272,10 @@ impl<S: Stepper, C: Side> FixedLoop<S, C> {
         let t = self.time();
         // Plain comparisons rather than f64::max: the same result for these non-NaN values,
         // without max's NaN handling in the loop.
-        let area = C::area(&f);
-        if area > self.rec.max_area {
-            self.rec.max_area = area;
+        if let Some(area) = C::area(&f) {
+            if area > self.rec.max_area {
+                self.rec.max_area = area;
+            }
         }
         let depth = self.side.depth(&q, &f);
         if depth > self.rec.max_depth {

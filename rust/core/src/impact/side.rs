@@ -30,8 +30,8 @@ pub(crate) trait Side {
     fn powers(f: &Self::Out, q: &Lanes, v: &Lanes) -> (f64, f64, f64);
     /// Whether the (clipped) normal force pushes.
     fn pushing(f: &Self::Out) -> bool;
-    /// The overlap's area.
-    fn area(f: &Self::Out) -> f64;
+    /// The overlap's area (`None` when apart).
+    fn area(f: &Self::Out) -> Option<f64>;
     /// Signed depth at `q` (negative when apart), `f` the evaluation at the end of the step
     /// that reached `q`.
     fn depth(&self, q: &Lanes, f: &Self::Out) -> f64;
@@ -139,6 +139,9 @@ impl<G: PlateGeometry> Side for PlateSide<'_, G> {
         ([f.fx, f.fy, f.torque, 0.0], f)
     }
 
+    /// Built at each step, its fourth lane a constant 0 (stored in the loop instead, the
+    /// disc's Verlet step took 13 % longer: 25.5 against 22.5 ns).
+    #[inline(always)]
     fn inv_mass(&self) -> Lanes {
         let m = &self.inv_mass;
         [m[0], m[1], m[2], 0.0]
@@ -159,8 +162,8 @@ impl<G: PlateGeometry> Side for PlateSide<'_, G> {
     }
 
     #[inline(always)]
-    fn area(f: &Forces) -> f64 {
-        f.overlap.map_or(0.0, |o| o.area)
+    fn area(f: &Forces) -> Option<f64> {
+        f.overlap.map(|o| o.area)
     }
 
     #[inline(always)]
@@ -265,6 +268,8 @@ pub(crate) struct PairSide<'a, G> {
     y0: f64,
     /// Steps between two polls of the cancel token (`poll_stride`).
     poll_stride: u64,
+    /// 1 / mass of each lane: m*, m*, I1, I2.
+    inv_mass: Lanes,
 }
 
 impl<'a, G: PairGeometry> PairSide<'a, G> {
@@ -276,6 +281,12 @@ impl<'a, G: PairGeometry> PairSide<'a, G> {
             l0: pair.angular_momentum(q0, v0),
             y0: q0[1],
             poll_stride: poll_stride(pair, 1),
+            inv_mass: [
+                1.0 / pair.m_star,
+                1.0 / pair.m_star,
+                1.0 / pair.particle.inertia,
+                1.0 / pair.i2,
+            ],
         }
     }
 
@@ -292,14 +303,9 @@ impl<G: PairGeometry> Side for PairSide<'_, G> {
         self.contact.evaluate(q, v, dt)
     }
 
+    #[inline(always)]
     fn inv_mass(&self) -> Lanes {
-        let p = self.pair;
-        [
-            1.0 / p.m_star,
-            1.0 / p.m_star,
-            1.0 / p.particle.inertia,
-            1.0 / p.i2,
-        ]
+        self.inv_mass
     }
 
     fn kinetic_energy(&self, v: &Lanes) -> f64 {
@@ -317,8 +323,8 @@ impl<G: PairGeometry> Side for PairSide<'_, G> {
     }
 
     #[inline(always)]
-    fn area(f: &PairForces) -> f64 {
-        f.area
+    fn area(f: &PairForces) -> Option<f64> {
+        Some(f.area)
     }
 
     /// Bodies with corners in contact: the evaluation's, to spare a second intersection.
