@@ -23,11 +23,15 @@ CALLS = {
     "trace": "rs.simulate(scene, theta_deg=30.0, trace=True)",
     "sweep": "rs.sweep(rs.Scene.paper(dt_factor=1e-4), theta_deg=np.linspace(5, 89, 4000), chunk_size=4000, threads=2)",
     "sweep, one thread": "rs.sweep(rs.Scene.paper(dt_factor=1e-4), theta_deg=np.linspace(5, 89, 4000), threads=1)",
+    # Two 1024-gons: ~0.2 ms a step (their intersection), ~2e4 steps; polled every 4096 steps
+    # as the plate is, the engine would not see the signal for most of a second.
+    "pair of fine polygons": "rs.simulate(rs.Scene.paper(shape=pair_gon, partner=pair_gon, dt_factor=1e-3), theta_deg=30.0)",
 }
 
 CHILD = """
 import sys, numpy as np, restitution as rs
 scene = rs.Scene.paper(shape=rs.RegularPolygon(r=0.01, n=4096), dt_factor=1e-5)  # ~2e6 steps, ~2.5 s
+pair_gon = rs.RegularPolygon(r=0.01, n=1024)
 print("ready", flush=True)
 while True:
     {call}

@@ -242,3 +242,41 @@ fn the_adaptive_paths_default_budget_has_a_ceiling_that_max_steps_lifts() {
         (BUDGET_CONTACTS as f64 * n_gear5.ceil()) as u64 + BUDGET_SLACK_STEPS
     );
 }
+
+/// How often `count_asks` has been asked.
+static PAIR_ASKS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+fn count_asks() -> bool {
+    PAIR_ASKS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    false
+}
+
+/// A step of two fine polygons costs hundreds of the plate's (their intersection is linear in
+/// their corners: two 1024-gons ~0.2 ms a fixed step), so polled every `POLL_STEPS` steps as
+/// the plate is, Ctrl-C would wait most of a second: a pair polls about as often in time, here
+/// at least every 64 fixed steps and every 4 adaptive ones (an attempt evaluates the law at
+/// least 7 times; a plate-like poll every 4096 steps asks once in these impacts), and the record is
+/// the one the unwatched call returns.
+#[test]
+fn fine_polygon_pairs_poll_their_token_as_often_in_time_as_the_plate() {
+    let gon = Shape::regular_polygon(0.01, 512).unwrap();
+    for (integrator, stride) in [(Integrator::Gear5, 64), (Integrator::Adaptive, 4)] {
+        let scene = Scene {
+            shape: gon.clone(),
+            partner: Some(restitution_core::Partner::of(gon.clone())),
+            integrator,
+            mu: 0.5,
+            ..Scene::default()
+        };
+        let init = Initial::from_angle(1.0, 30.0, 0.0, 0.0);
+        PAIR_ASKS.store(0, std::sync::atomic::Ordering::Relaxed);
+        let rec = simulate_cancellable(&scene, &init, &Cancel::watched(count_asks)).unwrap();
+        let asks = PAIR_ASKS.load(std::sync::atomic::Ordering::Relaxed);
+        assert!(
+            asks >= rec.steps / stride && rec.steps >= 4 * stride,
+            "{integrator:?}: {asks} polls in {} steps",
+            rec.steps
+        );
+        assert_eq!(Ok(rec), simulate(&scene, &init));
+    }
+}

@@ -14,6 +14,7 @@ pub mod fixed;
 pub(crate) mod flight;
 pub(crate) mod pair;
 pub mod record;
+pub(crate) mod side;
 pub(crate) mod work;
 
 pub use fixed::{tolerance, ERROR_TOLERANCE, TOLERANCE_FLOOR_ULPS};

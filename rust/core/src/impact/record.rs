@@ -6,7 +6,7 @@
 use crate::error::{Error, Result};
 use crate::law::pair::{Lanes, PairForces};
 use crate::law::{Dof, Forces};
-use crate::model::{Initial, Model, NormalLaw};
+use crate::model::{Initial, Model, NormalLaw, Pair};
 use crate::numerics::roots;
 use crate::numerics::trig::sin_cos;
 
@@ -139,28 +139,124 @@ pub struct Record {
     pub angular_momentum_residual: Option<f64>,
 }
 
+/// The two bodies of an impact as its record reads them: the particle on the plate (a partner
+/// of infinite mass that never moves), or a pair in its centre-of-mass frame.
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum Bodies<'a> {
+    /// The particle on the plate.
+    Plate(&'a Model),
+    /// The particle and its partner.
+    Pair(&'a Pair),
+}
+
+/// Where an impact ended: the relative lanes (x, y, phi1, phi2) and their rates (the plate:
+/// the particle's x, y, phi, a fourth lane at rest), the centres' distance at first touch and
+/// the normal at separation (the plate's never turns from +y).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Ending {
+    /// Final positions.
+    pub q: Lanes,
+    /// Final velocities.
+    pub v: Lanes,
+    /// The centres' distance at first touch (a pair's angular momentum before).
+    pub y0: f64,
+    /// The unit normal at separation.
+    pub n_sep: [f64; 2],
+}
+
+impl Ending {
+    /// The end of an impact on the plate at position `q` and velocity `v` = (vx, vy, omega).
+    pub(crate) fn on_plate(q: &Dof, v: &Dof) -> Self {
+        Ending {
+            q: [q[0], q[1], q[2], 0.0],
+            v: [v[0], v[1], v[2], 0.0],
+            y0: 0.0,
+            n_sep: [0.0, 1.0],
+        }
+    }
+}
+
+impl Bodies<'_> {
+    /// Kinetic energy at the (relative) lane velocities `v`.
+    fn kinetic_energy(&self, v: &Lanes) -> f64 {
+        match self {
+            Bodies::Plate(model) => model.kinetic_energy(&[v[0], v[1], v[2]]),
+            Bodies::Pair(pair) => pair.kinetic_energy(v),
+        }
+    }
+
+    /// The radii of the two bodies' contact-point levers (the plate's is 0).
+    fn radii(&self) -> (f64, f64) {
+        match self {
+            Bodies::Plate(model) => (model.r, 0.0),
+            Bodies::Pair(pair) => (pair.particle.r, pair.r2),
+        }
+    }
+}
+
 impl Record {
-    /// Completes the record of an impact from `init` that ended with velocity `v` = (vx, vy,
-    /// omega): the restitution coefficients and the rest of the outputs, the energy after it
-    /// and the balance's residual (`energy_in`, `work_normal`, `work_friction` and `stop`
-    /// already set). Every integrator ends here, so the outputs have one definition.
-    pub(crate) fn close(&mut self, model: &Model, init: &Initial, v: &Dof) {
-        self.energy_out = model.kinetic_energy(v);
+    /// Completes the record of an impact from `init` that ended at `end`: the restitution
+    /// coefficients and the rest of the outputs, the energy after it and the balance's
+    /// residual (`energy_in`, the works and `stop` already set). Every integrator ends here,
+    /// on the plate and on a pair, so the outputs have one definition: the plate's record is
+    /// the pair's with an immovable partner (no partner motion, no momentum balance, the
+    /// normal never turning).
+    pub(crate) fn close(&mut self, bodies: &Bodies, init: &Initial, end: &Ending) {
+        let (v, ns) = (&end.v, end.n_sep);
+        let g0 = [init.vx, init.vy];
+        self.energy_out = bodies.kinetic_energy(v);
         self.energy_residual =
             (self.energy_out - self.energy_in - self.work_normal - self.work_friction)
                 / self.energy_in;
-        self.vx_out = v[0];
-        self.vy_out = v[1];
+        self.e_n = -v[1] / g0[1];
+        self.e_n_sep = -(v[0] * ns[0] + v[1] * ns[1]) / g0[1];
+        // 0 - n_x: the plate's normal turns by +0 degrees, not -0.
+        self.normal_rotation_deg = (0.0 - ns[0]).atan2(ns[1]).to_degrees();
+        self.e_t = (g0[0] != 0.0).then(|| v[0] / g0[0]);
+        self.e_kin = v[0].hypot(v[1]) / g0[0].hypot(g0[1]);
         self.omega_out = v[2];
-        self.e_n = -v[1] / init.vy;
-        self.e_t = (init.vx != 0.0).then(|| v[0] / init.vx);
-        self.e_kin = (v[0].hypot(v[1])) / init.vx.hypot(init.vy);
-        let v_cp = init.vx + model.r * init.omega;
-        self.beta = (v_cp != 0.0).then(|| -(v[0] + model.r * v[2]) / v_cp);
+        self.partner_omega_out = v[3];
+        let (r1, r2) = bodies.radii();
+        let partner_omega = match bodies {
+            Bodies::Plate(_) => 0.0,
+            Bodies::Pair(_) => init.partner_omega,
+        };
+        let v_cp = g0[0] + r1 * init.omega + r2 * partner_omega;
+        self.beta = (v_cp != 0.0).then(|| -(v[0] + r1 * v[2] + r2 * v[3]) / v_cp);
         self.rebound_angle_deg = v[1].atan2(v[0]).to_degrees();
-        self.e_n_sep = self.e_n;
+        (self.vx_out, self.vy_out) = (v[0], v[1]);
+        if let Bodies::Pair(pair) = bodies {
+            self.close_momenta(pair, init, end);
+        }
         self.timed_out = self.stop != StopReason::Separated;
         self.separated = !self.timed_out;
+    }
+
+    /// A pair's lab velocities (in the frame where the partner was at rest: the centre of
+    /// mass moves at m1 g0 / M throughout) and the residuals of its momenta.
+    fn close_momenta(&mut self, pair: &Pair, init: &Initial, end: &Ending) {
+        let (m1, m2, ms) = (pair.particle.mass, pair.m2, pair.m_star);
+        let (q, v) = (&end.q, &end.v);
+        let g0 = [init.vx, init.vy];
+        let speed = g0[0].hypot(g0[1]);
+        let total = m1 + m2;
+        let cm = [m1 * g0[0] / total, m1 * g0[1] / total];
+        let v1 = [cm[0] + m2 / total * v[0], cm[1] + m2 / total * v[1]];
+        let v2 = [cm[0] - m1 / total * v[0], cm[1] - m1 / total * v[1]];
+        (self.vx_out, self.vy_out) = (v1[0], v1[1]);
+        (self.partner_vx_out, self.partner_vy_out) = (v2[0], v2[1]);
+        let p = [
+            m1 * v1[0] + m2 * v2[0] - m1 * g0[0],
+            m1 * v1[1] + m2 * v2[1] - m1 * g0[1],
+        ];
+        self.momentum_residual = Some(p[0].hypot(p[1]) / (ms * speed));
+        let l_in = pair.angular_momentum(
+            &[0.0, end.y0, 0.0, 0.0],
+            &[g0[0], g0[1], init.omega, init.partner_omega],
+        );
+        let l_out = pair.angular_momentum(q, v);
+        let reach = pair.particle.r + pair.r2;
+        self.angular_momentum_residual = Some((l_out - l_in) / (ms * speed * reach));
     }
 
     /// The four outputs whose error `err_est` bounds: e_N, e_T (0 when undefined), e_kin and
@@ -224,6 +320,24 @@ record_columns! {
     err_est: Opt, e_n_sep: F64, normal_rotation_deg: F64, partner_omega_out: F64,
     partner_vx_out: F64, partner_vy_out: F64, momentum_residual: Opt,
     angular_momentum_residual: Opt, work_damping: F64,
+}
+
+/// The normal at separation of two round bodies: the direction of the centres' line where
+/// they last were `reach` apart, found from the final state `q`, `v` by going back along the
+/// free flight since (no force acts once apart; a timed-out impact keeps its current
+/// direction).
+pub(crate) fn separation_normal(q: &Lanes, v: &Lanes, reach: f64) -> [f64; 2] {
+    let (x, y, gx, gy) = (q[0], q[1], v[0], v[1]);
+    let (rg, g2, r2) = (x * gx + y * gy, gx * gx + gy * gy, x * x + y * y);
+    let disc = rg * rg - g2 * (r2 - reach * reach);
+    let tau = if r2 > reach * reach && g2 > 0.0 && disc >= 0.0 {
+        (rg - disc.sqrt()) / g2
+    } else {
+        0.0
+    };
+    let (xs, ys) = (x - gx * tau, y - gy * tau);
+    let d = xs.hypot(ys);
+    [xs / d, ys / d]
 }
 
 /// Per-step history of one impact, as columns (one entry per step, the first at touch).

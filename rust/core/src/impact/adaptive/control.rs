@@ -162,7 +162,7 @@ const ROOT_REACH: f64 = 2.0;
 /// 1): 0.9 err^(-1/5) within [0.2, 5]. Below 1.8e-4 that is 5 without the power (0.9
 /// (1.8e-4)^(-1/5) = 5.04), which libm's pow, called at every step, made 4 % of a profile of
 /// the adaptive path.
-pub(super) fn step_factor(err: f64) -> f64 {
+pub(crate) fn step_factor(err: f64) -> f64 {
     if err < 1.8e-4 {
         5.0
     } else {

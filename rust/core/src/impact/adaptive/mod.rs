@@ -48,6 +48,7 @@ use crate::impact::record::{estimate_max_depth, Record, Trace};
 use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
+pub(crate) use control::step_factor;
 pub(crate) use run::integrate;
 
 /// Settings of the reference integrator.

@@ -11,7 +11,7 @@ use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, Y};
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::impact::flight;
-use crate::impact::record::{Record, StopReason, Trace};
+use crate::impact::record::{Bodies, Ending, Record, StopReason, Trace};
 use crate::model::{Initial, Model};
 use std::f64::consts::PI;
 
@@ -219,8 +219,8 @@ impl<'a, 't> Run<'a, 't> {
         let v = [s[VX], s[VY], s[OM]];
         let gap = |t: f64| s[Y] + v[1] * t - shape.touch_height(s[PHI] + v[2] * t);
         let left = self.lim.max_steps.saturating_sub(self.attempts);
-        let (jump, advances) =
-            flight::jump(gap, s[Y], &v, (r, shape.touch_arm()), self.lim.h_max, left);
+        let approach = flight::Approach::to_plate(s[Y], &v, (r, shape.touch_arm()));
+        let (jump, advances) = flight::jump(gap, approach, self.lim.h_max, left);
         let (t_jump, done) = match jump {
             flight::Jump::Stay => return false,
             flight::Jump::To(t) => (t, false),
@@ -524,7 +524,8 @@ impl<'a, 't> Run<'a, 't> {
             err_est: Some(error_estimate(&self.err_acc.map(f64::sqrt), init, model.r)),
             ..Record::default()
         };
-        rec.close(model, init, &[s[VX], s[VY], s[OM]]);
+        let end = Ending::on_plate(&[s[X], s[Y], s[PHI]], &[s[VX], s[VY], s[OM]]);
+        rec.close(&Bodies::Plate(model), init, &end);
         rec
     }
 }

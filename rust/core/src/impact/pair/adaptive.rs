@@ -12,26 +12,26 @@
 //! spring's trial force would move inside the cone, s dF_trial/dt < mu dF_n/dt (both rates
 //! taken along the motion by a forward difference).
 
-use super::flight::{self, Flight};
-use super::ode::{Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
-use super::record::{close_pair, separation_normal};
+use super::ode::{
+    error_estimate, error_scales, Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT,
+    X, XI, Y,
+};
 use super::switches::first_switch;
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
-use crate::impact::record::{Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES};
+use crate::impact::adaptive::step_factor;
+use crate::impact::flight::{self, Approach, Jump};
+use crate::impact::record::{
+    separation_normal, Bodies, Ending, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES,
+};
+use crate::impact::side::poll_stride;
 use crate::integrate::dopri::{root_error_ratio, DenseStep};
 use crate::law::contact::NormalForce;
-use crate::law::pair::PairForces;
-use crate::law::StickState;
 use crate::model::{Initial, NormalLaw, Pair};
 use crate::numerics::roots;
 use std::f64::consts::PI;
-
-/// Factor on the local errors accumulated in quadrature that makes `err_est` (the plate's
-/// adaptive path's, measured there: `impact::adaptive::ERR_EST_FACTOR`).
-const ERR_EST_FACTOR: f64 = 2.25;
 
 /// Consecutive pieces ended by a switch within [`CHATTER_SPAN`] of the contact time after which
 /// a step ignores the switches that chatter: a slipping contact whose cone shrinks faster than
@@ -58,8 +58,10 @@ pub(super) fn integrate<G: PairGeometry>(
         run.push(tr);
     }
     let mut step = DenseStep::<NS, NS>::default();
+    // An attempt evaluates the law at 7 stages and more where it locates a switch.
+    let stride = poll_stride(pair, 16);
     let stop = loop {
-        cancel.poll(run.attempts)?;
+        cancel.poll_every(run.attempts, stride)?;
         if run.attempts >= max_steps {
             break StopReason::StepBudget;
         }
@@ -505,21 +507,32 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.fly();
     }
 
-    /// Apart: ends the impact when the bodies can never touch again, else skips the flight up
-    /// to where they might.
+    /// Apart: jumps the free flight (the plate's, [`flight`]), each advance counted as a
+    /// step; ends the impact when the bodies can never touch again.
     fn fly(&mut self) {
         let s = &mut self.s;
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
         let radii = [self.ode.pair.particle.r, self.ode.pair.r2];
-        match flight::skip(&self.ode.geometry, &q, &v, radii, 2.0 * self.h_max) {
-            Flight::Over => self.separated = true,
-            Flight::Skip(tau) => {
-                let q = flight::advance(&q, &v, tau);
-                (s[X], s[Y], s[4], s[6]) = (q[0], q[1], q[2], q[3]);
-                self.t += tau;
+        let approach = Approach::of_pair(&q, &v, radii);
+        let geometry = &self.ode.geometry;
+        let at = |t: f64| -> [f64; 4] { std::array::from_fn(|i| q[i] + v[i] * t) };
+        let gap = |t: f64| -geometry.signed_depth(&at(t));
+        let left = self.rec.step_budget.saturating_sub(self.attempts);
+        let (jump, advances) = flight::jump(gap, approach, self.h_max, left);
+        let t_jump = match jump {
+            Jump::Stay => return,
+            Jump::To(t) => t,
+            Jump::Clear(t) => {
+                self.separated = true;
+                t
             }
-        }
+        };
+        let q = at(t_jump);
+        (s[X], s[Y], s[4], s[6]) = (q[0], q[1], q[2], q[3]);
+        self.t += t_jump;
+        self.steps += advances;
+        self.attempts += advances;
     }
 
     /// The largest overlap and area inside the taken part of the step: at its end, and where
@@ -543,23 +556,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
 
     fn push(&self, tr: &mut Trace) {
         let s = &self.s;
-        let e = self.ode.eval_new(&self.mode, s).1;
-        let f = PairForces {
-            f_el: e.f_el,
-            f_d: e.f_d,
-            f_t: e.f_t,
-            n: e.n,
-            el: e.el,
-            damp: e.damp,
-            lever_t: e.lever_t,
-            area: e.area,
-            depth: e.depth,
-            stick: match self.mode.tan {
-                Tan::Stick => StickState::Stick,
-                Tan::Slip(_) => StickState::Slip,
-                _ => StickState::None,
-            },
-        };
+        let f = self.ode.eval_new(&self.mode, s).1.forces(&self.mode);
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
         tr.push_pair(self.t, &q, &v, &f, s[XI]);
@@ -582,78 +579,15 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         } else {
             separation_normal(&q, &v, self.ode.geometry.reach())
         };
-        close_pair(
-            &mut rec,
-            self.ode.pair,
-            &self.init,
-            (&q, &v),
-            (self.y0, n_sep),
-        );
-        rec.err_est = Some(self.error_estimate());
+        let end = Ending {
+            q,
+            v,
+            y0: self.y0,
+            n_sep,
+        };
+        rec.close(&Bodies::Pair(self.ode.pair), &self.init, &end);
+        rec.err_est = Some(error_estimate(&self.acc, &self.init, self.ode.pair));
         self.rec = rec;
         self.rec
     }
-
-    /// `err_est` from the accumulated local errors of g and the spins: the largest over e_N,
-    /// e_T, e_kin and both spins in units of v / r.
-    fn error_estimate(&self) -> f64 {
-        let (acc, init) = (&self.acc, &self.init);
-        let v = init.vx.hypot(init.vy);
-        let e_t = if init.vx != 0.0 {
-            acc[GX] / init.vx.abs()
-        } else {
-            0.0
-        };
-        let e_n = acc[GY] / init.vy.abs();
-        let e_kin = acc[GX].hypot(acc[GY]) / v;
-        let spin1 = acc[W1] * self.ode.pair.particle.r / v;
-        let spin2 = acc[W2] * self.ode.pair.r2 / v;
-        ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin1).max(spin2)
-    }
-}
-
-/// The step size controller's factor for a step with scaled error `err`: 0.9 err^(-1/5)
-/// within [0.2, 5].
-fn step_factor(err: f64) -> f64 {
-    (0.9 * err.powf(-0.2)).clamp(0.2, 5.0)
-}
-
-/// The error scale of each state component, from the impact's own scales (as the plate's
-/// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what
-/// they cover in t_c / pi; the spring the elongation holding the contact point's energy;
-/// works the energy).
-fn error_scales(
-    pair: &Pair,
-    init: &Initial,
-    (speed, energy): (f64, f64),
-    t_est: f64,
-    depth: f64,
-) -> State {
-    let (r1, r2) = (pair.particle.r, pair.r2);
-    let floor = |x: f64| x.clamp(1e-3 * speed, speed);
-    let t_c = t_est / PI;
-    let (vx, vy, spin) = (floor(init.vx.abs()), floor(init.vy.abs()), floor(speed));
-    let law = &pair.law;
-    let m_t = 1.0 / (1.0 / law.mass + law.r * law.r / law.inertia);
-    let (k_xi, rate, _) = law.spring(depth);
-    let k_t = k_xi * rate;
-    let xi = if k_t > 0.0 {
-        vx * (m_t / k_t).sqrt() * rate
-    } else {
-        f64::INFINITY
-    };
-    [
-        vx * t_c,
-        vy * t_c,
-        vx,
-        vy,
-        spin / r1 * t_c,
-        spin / r1,
-        spin / r2 * t_c,
-        spin / r2,
-        xi,
-        energy,
-        energy,
-        energy,
-    ]
 }

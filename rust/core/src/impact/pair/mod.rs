@@ -4,28 +4,26 @@
 //! pair is stepped in its centre-of-mass frame on four lanes (x, y of the particle relative to
 //! the partner, phi1, phi2) until the bodies separate for good. Round bodies cannot touch
 //! again once they move apart; bodies with corners can, until their circumscribed circles
-//! part (`flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `ode`)
-//! integrate the same coordinates; both end in the one record (`record`).
+//! part (the plate's `impact::flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `ode`)
+//! integrate the same coordinates; both end in the one record builder, the plate's
+//! (`Record::close` in `impact/record.rs`).
 
 use super::budget::{self, MIN_DEPTH_ULPS};
-use super::record::{Record, Trace, TIMEOUT_CONTACT_TIMES};
+use super::fixed::{FixedLoop, Limits};
+use super::record::{Record, Trace};
+use super::side::PairSide;
 use crate::cancel::Cancel;
 use crate::error::{ensure_param, finite, Error, Result};
 use crate::geometry::pair::{DiscPair, PairGeometry, SpherePair};
 use crate::geometry::pair_shapes::ShapePair;
 use crate::geometry::Shape;
-use crate::integrate::{Gear5, Lanes, Verlet};
+use crate::integrate::{Gear5, Lanes, Stepper, Verlet};
 use crate::model::scene::MAX_RIM_SPEED;
 use crate::model::{Initial, Integrator, Model, NormalLaw, Pair};
-use fixed::{Limits, PairLoop};
-use std::f64::consts::PI;
 
 mod adaptive;
 mod depth;
-mod fixed;
-mod flight;
 mod ode;
-mod record;
 mod switches;
 
 /// Simulates one impact of the pair of a validated particle model whose scene has a partner.
@@ -142,15 +140,19 @@ fn run_fixed<G: PairGeometry>(
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let limits = Limits {
-        max_steps: budget::step_budget(&pair.law, init, depth_est),
-        contact_time: TIMEOUT_CONTACT_TIMES * PI * depth_est / init.vy.abs(),
-    };
-    match pair.law.scene.integrator {
+    let law = &pair.law;
+    let limits = Limits::of(init, depth_est, budget::step_budget(law, init, depth_est));
+    let (q0, v0) = (start.q, [init.vx, init.vy, init.omega, init.partner_omega]);
+    let side = PairSide::new(pair, geometry, (&q0, &v0));
+    match law.scene.integrator {
         Integrator::Verlet => {
-            PairLoop::<Verlet, _>::new(pair, init, (geometry, start), limits).run(trace, cancel)
+            let stepper = Verlet::start_lanes(q0, v0, law.dt);
+            FixedLoop::new(side, stepper, law.dt, &limits).run(init, trace, cancel)
         }
-        _ => PairLoop::<Gear5, _>::new(pair, init, (geometry, start), limits).run(trace, cancel),
+        _ => {
+            let stepper = Gear5::start_lanes(q0, v0, law.dt);
+            FixedLoop::new(side, stepper, law.dt, &limits).run(init, trace, cancel)
+        }
     }
 }
 

@@ -2,9 +2,12 @@
 //! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
 
 use crate::geometry::pair::{HeldSprings, PairGeometry};
+use crate::impact::adaptive::ERR_EST_FACTOR;
 use crate::law::contact::NormalForce;
-use crate::law::pair::dot;
-use crate::model::{NormalLaw, Pair};
+use crate::law::pair::{dot, PairForces};
+use crate::law::StickState;
+use crate::model::{Initial, NormalLaw, Pair};
+use std::f64::consts::PI;
 
 /// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
 /// tangential force, and of the normal force's dashpot alone.
@@ -20,6 +23,63 @@ pub(super) const XI: usize = 8;
 pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
 pub(super) const WD: usize = 11;
+
+/// `err_est` from the local errors `acc` of g and the spins accumulated in quadrature: the
+/// largest over e_N, e_T, e_kin and both spins in units of v / r, times the plate's factor
+/// (measured there: [`ERR_EST_FACTOR`]).
+pub(super) fn error_estimate(acc: &State, init: &Initial, pair: &Pair) -> f64 {
+    let v = init.vx.hypot(init.vy);
+    let e_t = if init.vx != 0.0 {
+        acc[GX] / init.vx.abs()
+    } else {
+        0.0
+    };
+    let e_n = acc[GY] / init.vy.abs();
+    let e_kin = acc[GX].hypot(acc[GY]) / v;
+    let spin1 = acc[W1] * pair.particle.r / v;
+    let spin2 = acc[W2] * pair.r2 / v;
+    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin1).max(spin2)
+}
+
+/// The error scale of each state component, from the impact's own scales (as the plate's
+/// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what
+/// they cover in t_c / pi; the spring the elongation holding the contact point's energy;
+/// works the energy).
+pub(super) fn error_scales(
+    pair: &Pair,
+    init: &Initial,
+    (speed, energy): (f64, f64),
+    t_est: f64,
+    depth: f64,
+) -> State {
+    let (r1, r2) = (pair.particle.r, pair.r2);
+    let floor = |x: f64| x.clamp(1e-3 * speed, speed);
+    let t_c = t_est / PI;
+    let (vx, vy, spin) = (floor(init.vx.abs()), floor(init.vy.abs()), floor(speed));
+    let law = &pair.law;
+    let m_t = 1.0 / (1.0 / law.mass + law.r * law.r / law.inertia);
+    let (k_xi, rate, _) = law.spring(depth);
+    let k_t = k_xi * rate;
+    let xi = if k_t > 0.0 {
+        vx * (m_t / k_t).sqrt() * rate
+    } else {
+        f64::INFINITY
+    };
+    [
+        vx * t_c,
+        vy * t_c,
+        vx,
+        vy,
+        spin / r1 * t_c,
+        spin / r1,
+        spin / r2 * t_c,
+        spin / r2,
+        xi,
+        energy,
+        energy,
+        energy,
+    ]
+}
 
 /// The tangential law of a piece.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,6 +133,28 @@ pub(super) struct Eval {
     pub(super) el: [f64; 4],
     pub(super) damp: [f64; 4],
     pub(super) lever_t: [f64; 2],
+}
+
+impl Eval {
+    /// The evaluation as the fixed steps report theirs (for the trace), in mode `m`.
+    pub(super) fn forces(&self, m: &Mode) -> PairForces {
+        PairForces {
+            f_el: self.f_el,
+            f_d: self.f_d,
+            f_t: self.f_t,
+            n: self.n,
+            el: self.el,
+            damp: self.damp,
+            lever_t: self.lever_t,
+            area: self.area,
+            depth: self.depth,
+            stick: match m.tan {
+                Tan::Stick => StickState::Stick,
+                Tan::Slip(_) => StickState::Slip,
+                _ => StickState::None,
+            },
+        }
+    }
 }
 
 /// The pair's ODE.
