@@ -24,8 +24,10 @@ pub struct PairFrame {
     pub area: f64,
     /// Chord length l (m): dA/dt = -l (g_n + lever_rate_area . omega).
     pub chord: f64,
-    /// Lever of the area law's elastic force (acting at the overlap's centroid).
-    pub lever_area: [f64; 2],
+    /// The area law's elastic force on the lanes per unit stiffness, -grad W of its
+    /// potential (bodies with corners: `pair_shapes/potential.rs`; round bodies act along n
+    /// without it).
+    pub area_push: [f64; 4],
     /// Lever of the area law's damping: -b_i / l (dA/dt's terms in the spins).
     pub lever_rate_area: [f64; 2],
     /// Lever of the tangential force (along t, at the overlap's centroid).

@@ -13,13 +13,13 @@
 //! pair leaves the area unchanged.
 
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
-use super::parry::polygon_pair_overlap;
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
-use disc_polygon::disc_polygon;
+use disc_polygon::{disc_polygon, DiscRole};
+use polygon_polygon::{polygon_patch, Extras};
 use springs::{
-    corner_springs, disc_spring, held_corner_springs, held_springs_value, parted_disc_patch,
-    parted_patch, springs_of_held,
+    disc_spring, held_corner_springs, held_springs_value, parted_disc_patch, parted_patch,
+    springs_of_held,
 };
 use std::cell::RefCell;
 
@@ -58,6 +58,12 @@ pub struct ShapePatch {
     pub b: [f64; 2],
     /// The linear law's springs (empty unless the pair asks for them).
     pub springs: Springs,
+    /// The area law's potential integral W = integral of dist(p, chord line) dA over the
+    /// overlap (m^3; 0 unless the pair asks for it).
+    pub potential: f64,
+    /// -grad W on the lanes (x, y, phi1, phi2): the area law's elastic force per unit
+    /// stiffness (m^2 on the position, m^3 on the angles).
+    pub push: [f64; 4],
 }
 
 /// A pair of which at least one body has corners.
@@ -157,12 +163,22 @@ impl<'a> ShapePair<'a> {
         let at = [q[0], q[1]];
         match self.polygons() {
             Some(ab) => with_placed(ab, q, |pa, pb| {
-                polygon_patch(pa, pb, at, self.reach(), self.springs)
+                polygon_patch(pa, pb, at, self.reach(), self.extras())
             }),
             None => {
                 let (c, r, placed, sign) = self.disc_and_polygon(q)?;
                 self.disc_with_polygon(c, r, placed, at, sign)
             }
+        }
+    }
+
+    /// What the overlap carries for the pair's law: the linear law's springs, or the area
+    /// law's push.
+    fn extras(&self) -> Extras {
+        if self.springs {
+            Extras::Springs
+        } else {
+            Extras::Push
         }
     }
 
@@ -231,7 +247,7 @@ impl<'a> ShapePair<'a> {
             depth: p.depth,
             area: p.area,
             chord: p.chord,
-            lever_area: lever(cross(arm, n), n),
+            area_push: p.push,
             lever_rate_area: lever(
                 if p.chord > 0.0 {
                     -p.b[0] / p.chord
@@ -286,7 +302,11 @@ impl<'a> ShapePair<'a> {
         PLACED.with(|cell| {
             let (verts, _) = &mut *cell.borrow_mut();
             place_into(verts, poly, at, phi);
-            let mut p = disc_polygon(c, r, verts.iter().copied(), q)?;
+            let role = DiscRole {
+                push: !self.springs,
+                disc_is_particle: sign > 0.0,
+            };
+            let mut p = disc_polygon(c, r, verts.iter().copied(), q, role)?;
             if self.springs {
                 p.springs = disc_spring(c, r, verts, q, sign);
             }
@@ -359,7 +379,7 @@ impl PairGeometry for ShapePair<'_> {
         // the switches are located on the step's dense output.
         let p = with_placed(ab, q, |pa, pb| {
             let springs = springs_of_held(pa, pb, at, held);
-            match polygon_patch(pa, pb, at, self.reach(), false) {
+            match polygon_patch(pa, pb, at, self.reach(), Extras::Nothing) {
                 Some(p) => Some(ShapePatch { springs, ..p }),
                 None => parted_patch(pa, pb, held, springs),
             }
@@ -475,66 +495,6 @@ fn disc_over_top(r: f64, b: &[[f64; 2]]) -> f64 {
     best
 }
 
-/// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
-/// partner), parry's intersection within `reach`, with the linear law's corner springs when
-/// `springs`.
-fn polygon_patch(
-    pa: &[[f64; 2]],
-    pb: &[[f64; 2]],
-    at: [f64; 2],
-    reach: f64,
-    springs: bool,
-) -> Option<ShapePatch> {
-    polygon_pair_overlap(
-        pa.iter().copied(),
-        pb.iter().copied(),
-        reach,
-        |patch, points| {
-            let chord = patch.chord?;
-            let across = edge_under(chord, [pa, pb], at, reach);
-            let mut p = assemble(at, patch.area, patch.centroid, chord, points, across)?;
-            if springs {
-                p.springs = corner_springs(pa, pb, points, at);
-            }
-            Some(p)
-        },
-    )?
-}
-
-/// Chords shorter than this part of the reach look for an edge under them (`edge_under`).
-const SHORT_CHORD: f64 = 1e-3;
-
-/// Where a short chord's ends both lie on one edge of either polygon (a corner pressing into
-/// an edge: the overlap a sliver of that edge), the normal of that edge (unnormalised): the
-/// chord's own direction carries the round-off of its ends over its length, 1e-3 at a chord of
-/// 1e-14 m, where the edge's carries it over the edge's. `None` for longer chords and chords
-/// across two edges.
-fn edge_under(
-    chord: [[f64; 2]; 2],
-    polygons: [&[[f64; 2]]; 2],
-    at: [f64; 2],
-    reach: f64,
-) -> Option<[f64; 2]> {
-    let [c0, c1] = chord;
-    let d = sub(c1, c0);
-    if d[0].hypot(d[1]) >= SHORT_CHORD * reach {
-        return None;
-    }
-    let ulps = MIN_CHORD_ULPS * f64::EPSILON * (at[0].abs() + at[1].abs() + reach);
-    for poly in polygons {
-        let n = poly.len();
-        for j in 0..n {
-            let (p, e) = (poly[j], sub(poly[(j + 1) % n], poly[j]));
-            let len = e[0].hypot(e[1]);
-            let off = |x: [f64; 2]| cross(e, sub(x, p)).abs();
-            if off(c0) <= ulps * len && off(c1) <= ulps * len {
-                return Some([-e[1], e[0]]);
-            }
-        }
-    }
-    None
-}
-
 /// A disc with a polygon ([`ShapePair::disc_and_polygon`]): the disc's centre and radius, the
 /// polygon with where it is placed and how far turned, the sign of the disc's push.
 type DiscAndPolygon<'a> = ([f64; 2], f64, (&'a Polygon, [f64; 2], f64), f64);
@@ -593,10 +553,16 @@ fn assemble(
         centroid,
         b,
         springs: Springs::default(),
+        potential: 0.0,
+        push: [0.0; 4],
     })
 }
 
 mod disc_polygon;
+mod polygon_polygon;
+pub(crate) mod potential;
+#[cfg(test)]
+mod potential_tests;
 mod springs;
 #[cfg(test)]
 mod tests;

@@ -137,6 +137,7 @@ pub(super) fn parted_disc_patch(
         centroid: x,
         b: [0.0; 2],
         springs: one_spring(depth, x, n, q),
+        ..ShapePatch::default()
     }
 }
 
@@ -287,5 +288,6 @@ pub(super) fn parted_patch(
         centroid,
         b: [0.0; 2],
         springs,
+        ..ShapePatch::default()
     })
 }
