@@ -83,9 +83,21 @@ fn edge(v: &[[f64; 2]], k: u32) -> [[f64; 2]; 2] {
 
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
 /// `false` when every vertex lies inside (nothing to do: `next` untouched).
-fn clip_by_edge(out: &[ClipVertex], next: &mut Vec<ClipVertex>, bj: [[f64; 2]; 2], j: u32) -> bool {
+fn clip_by_edge(
+    out: &[ClipVertex],
+    next: &mut Vec<ClipVertex>,
+    bj: [[f64; 2]; 2],
+    j: u32,
+    bound: Bound,
+) -> bool {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
+    // The polygon's bounding circle inside the half-plane: nothing to clip (one test for
+    // the many edges far from the contact).
+    let c = side(bound.centre);
+    if c >= 0.0 && c * c >= bound.radius2 * (e[0] * e[0] + e[1] * e[1]) {
+        return false;
+    }
     if out.iter().all(|v| side(v.p) >= 0.0) {
         return false;
     }
@@ -118,20 +130,58 @@ fn clip_by_edge(out: &[ClipVertex], next: &mut Vec<ClipVertex>, bj: [[f64; 2]; 2
     true
 }
 
-/// The edge of B (counter-clockwise vertices `b`) whose line the point `q` lies farthest
-/// outside (the squared distance, signed).
-fn farthest_outside(b: &[[f64; 2]], q: [f64; 2]) -> usize {
-    let m = b.len();
-    let mut best = (f64::INFINITY, 0);
-    for j in 0..m {
-        let e = sub(b[(j + 1) % m], b[j]);
-        let o = cross(e, sub(q, b[j]));
-        let key = o * o.abs() / (e[0] * e[0] + e[1] * e[1]);
-        if key < best.0 {
-            best = (key, j);
+/// A circle around a polygon: its vertices' mean and the largest squared distance from it.
+#[derive(Debug, Clone, Copy)]
+struct Bound {
+    centre: [f64; 2],
+    radius2: f64,
+}
+
+impl Bound {
+    fn of(v: &[ClipVertex]) -> Self {
+        let k = v.len() as f64;
+        let (sx, sy) = v
+            .iter()
+            .fold((0.0, 0.0), |(x, y), w| (x + w.p[0], y + w.p[1]));
+        let centre = [sx / k, sy / k];
+        let radius2 = v.iter().fold(0.0f64, |r, w| {
+            let d = sub(w.p, centre);
+            r.max(d[0] * d[0] + d[1] * d[1])
+        });
+        // A hair more, so that round-off never skips a clip that cuts.
+        Bound {
+            centre,
+            radius2: radius2 * (1.0 + 1e-9),
         }
     }
-    best.1
+}
+
+/// The edge of B (counter-clockwise vertices `b`, centred near the origin) that faces the
+/// point `q`: of the two edges at B's farthest vertex along q, the one whose outward normal is
+/// nearer q's direction. The clip starts there, so that its first cut leaves only A's corners
+/// near the contact.
+fn facing_edge(b: &[[f64; 2]], q: [f64; 2]) -> usize {
+    let m = b.len();
+    let mut k = 0;
+    let mut best = f64::NEG_INFINITY;
+    for (i, v) in b.iter().enumerate() {
+        let s = v[0] * q[0] + v[1] * q[1];
+        if s > best {
+            best = s;
+            k = i;
+        }
+    }
+    let prev = (k + m - 1) % m;
+    let along = |j: usize| {
+        let e = sub(b[(j + 1) % m], b[j]);
+        // The outward normal (e_y, -e_x) against q, per unit edge length.
+        (e[1] * q[0] - e[0] * q[1]) / (e[0] * e[0] + e[1] * e[1]).sqrt()
+    };
+    if along(prev) > along(k) {
+        prev
+    } else {
+        k
+    }
 }
 
 /// The intersection of the counter-clockwise convex polygons `a` (centred near `q`) and `b`
@@ -145,28 +195,65 @@ pub fn clip_convex(
     out: &mut Vec<ClipVertex>,
     next: &mut Vec<ClipVertex>,
 ) -> bool {
-    let (n, m) = (a.len() as u32, b.len());
-    out.clear();
-    out.extend(a.iter().enumerate().map(|(i, &p)| ClipVertex {
-        p,
-        before: EdgeLine::A((i as u32 + n - 1) % n),
-        after: EdgeLine::A(i as u32),
-    }));
-    let j0 = farthest_outside(b, q);
-    for k in 0..m {
+    let m = b.len();
+    let j0 = facing_edge(b, q);
+    first_clip(a, edge(b, j0 as u32), j0 as u32, out);
+    if out.len() < 3 {
+        return false;
+    }
+    let mut bound = Bound::of(out);
+    for k in 1..m {
         let j = (j0 + k) % m;
-        if clip_by_edge(out, next, edge(b, j as u32), j as u32) {
+        if clip_by_edge(out, next, edge(b, j as u32), j as u32, bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();
                 return false;
             }
+            bound = Bound::of(out);
         }
     }
     for v in out.iter_mut() {
         v.p = exact_position(v, a, b);
     }
     true
+}
+
+/// A clipped by the inner half-plane of B's edge `j` into `out`, A's corners read in place
+/// (the first clip, where A is whole: no copy of it is made).
+fn first_clip(a: &[[f64; 2]], bj: [[f64; 2]; 2], j: u32, out: &mut Vec<ClipVertex>) {
+    out.clear();
+    let n = a.len();
+    let e = sub(bj[1], bj[0]);
+    let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
+    let mut prev = n - 1;
+    let mut s_prev = side(a[prev]);
+    for i in 0..n {
+        let s = side(a[i]);
+        if (s_prev >= 0.0) != (s >= 0.0) {
+            // The edge prev -> i (A's edge `prev`) crosses B's line j.
+            let t = s_prev / (s_prev - s);
+            let p = [
+                a[prev][0] + t * (a[i][0] - a[prev][0]),
+                a[prev][1] + t * (a[i][1] - a[prev][1]),
+            ];
+            let (before, after) = if s_prev >= 0.0 {
+                (EdgeLine::A(prev as u32), EdgeLine::B(j))
+            } else {
+                (EdgeLine::B(j), EdgeLine::A(prev as u32))
+            };
+            out.push(ClipVertex { p, before, after });
+        }
+        if s >= 0.0 {
+            out.push(ClipVertex {
+                p: a[i],
+                before: EdgeLine::A(prev as u32),
+                after: EdgeLine::A(i as u32),
+            });
+        }
+        prev = i;
+        s_prev = s;
+    }
 }
 
 /// A vertex's position from the two lines it lies on: a corner where both are one polygon's
