@@ -16,7 +16,7 @@ use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
 use disc_polygon::{disc_polygon, DiscRole};
-use polygon_polygon::{polygon_patch, Extras};
+use polygon_polygon::{held_overlap, held_overlap_value, held_patch, polygon_patch, Extras};
 use springs::{
     disc_spring, held_corner_springs, held_springs_value, parted_disc_patch, parted_patch,
     springs_of_held,
@@ -353,7 +353,7 @@ impl PairGeometry for ShapePair<'_> {
     }
 
     fn holds_springs(&self) -> bool {
-        self.springs && self.polygons().is_some()
+        self.polygons().is_some()
     }
 
     fn held_springs(&self, q: &[f64; 4]) -> HeldSprings {
@@ -361,13 +361,22 @@ impl PairGeometry for ShapePair<'_> {
             Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
                 held_corner_springs(pa, pb, [q[0], q[1]], self.circumradii())
             }),
-            _ => HeldSprings::default(),
+            Some(ab) => with_placed(ab, q, |pa, pb| held_overlap(pa, pb, [q[0], q[1]])),
+            None => HeldSprings::default(),
         }
     }
 
     fn frame_held(&self, q: &[f64; 4], held: &HeldSprings) -> Option<PairFrame> {
         if !self.springs {
-            return self.frame(q);
+            // The area law on two polygons: the held overlap continued (its force smooth up
+            // to the located switch where a crossing passes a corner).
+            return match self.polygons() {
+                Some(ab) if !held.overlap.is_empty() => {
+                    let p = with_placed(ab, q, |pa, pb| held_patch(pa, pb, [q[0], q[1]], held))?;
+                    Some(self.frame_of(p, q))
+                }
+                _ => self.frame(q),
+            };
         }
         let Some(ab) = self.polygons() else {
             // A disc with a polygon: its one spring is smooth (C1 where the nearest feature
@@ -395,6 +404,9 @@ impl PairGeometry for ShapePair<'_> {
             Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
                 held_springs_value(pa, pb, [q[0], q[1]], self.circumradii(), held)
             }),
+            Some(ab) if !held.overlap.is_empty() => {
+                with_placed(ab, q, |pa, pb| held_overlap_value(pa, pb, held))
+            }
             _ => f64::NEG_INFINITY,
         }
     }

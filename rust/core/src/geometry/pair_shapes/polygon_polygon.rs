@@ -5,7 +5,8 @@
 use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::springs::corner_springs;
 use super::{assemble, sub, ShapePatch};
-use crate::geometry::convex_clip::{clip_convex, ClipVertex};
+use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine};
+use crate::geometry::pair::HeldSprings;
 use std::cell::RefCell;
 
 /// What the overlap carries beside its area, chord and normal.
@@ -50,39 +51,151 @@ pub(super) fn polygon_patch(
         if !clip_convex(pa, pb, at, out, next) {
             return None;
         }
-        let (k0, k1) = farthest_crossings(out)?;
-        let (c0, c1) = (out[k0], out[k1]);
-        let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
-        if !(whole.area > 0.0) {
+        let chord = farthest_crossings(out)?;
+        patch_of(out, chord, (pa, pb), at, extras, points)
+    })
+}
+
+/// The patch of the overlap `out` (the clip's vertices) with the chord between its vertices
+/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`.
+fn patch_of(
+    out: &[ClipVertex],
+    (k0, k1): (usize, usize),
+    (pa, pb): (&[[f64; 2]], &[[f64; 2]]),
+    at: [f64; 2],
+    extras: Extras,
+    points: &mut Vec<([f64; 2], bool)>,
+) -> Option<ShapePatch> {
+    let (c0, c1) = (out[k0], out[k1]);
+    let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
+    if !(whole.area > 0.0) {
+        return None;
+    }
+    let centroid = [
+        c0.p[0] + whole.moment[0] / whole.area,
+        c0.p[1] + whole.moment[1] / whole.area,
+    ];
+    points.clear();
+    points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
+    let across = shared_edge_normal(&c0, &c1, pa, pb);
+    let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
+    match extras {
+        Extras::Springs => p.springs = corner_springs(pa, pb, points, at),
+        Extras::Push => {
+            let caps = caps_of(out, (k0, k1));
+            let crossing = |v: &ClipVertex| {
+                let (i, j) = v.crossing().expect("a crossing");
+                Crossing {
+                    at: v.p,
+                    particle: edge_normal(pa, i),
+                    partner: edge_normal(pb, j),
+                }
+            };
+            (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
+        }
+        Extras::Nothing => {}
+    }
+    Some(p)
+}
+
+/// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
+/// (docs/model.md 17.8): its vertices' edge lines and its chord; empty when apart.
+pub(super) fn held_overlap(pa: &[[f64; 2]], pb: &[[f64; 2]], at: [f64; 2]) -> HeldSprings {
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch { out, next, .. } = &mut *buf;
+        match clip_convex(pa, pb, at, out, next)
+            .then(|| farthest_crossings(out))
+            .flatten()
+        {
+            Some((k0, k1)) => HeldSprings {
+                overlap: out.iter().map(|v| (v.before, v.after)).collect(),
+                chord: [k0, k1],
+                ..HeldSprings::default()
+            },
+            None => HeldSprings::default(),
+        }
+    })
+}
+
+/// The area law's patch with the overlap `held` continued smoothly: each held vertex where its
+/// two edge lines meet, whether or not a crossing has passed the end of its edge since (the
+/// switch is located by [`held_overlap_value`]); `None` when the bodies do not overlap, or the
+/// continued overlap has no area.
+pub(super) fn held_patch(
+    pa: &[[f64; 2]],
+    pb: &[[f64; 2]],
+    at: [f64; 2],
+    held: &HeldSprings,
+) -> Option<ShapePatch> {
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch { out, next, points } = &mut *buf;
+        if !clip_convex(pa, pb, at, out, next) {
             return None;
         }
-        let centroid = [
-            c0.p[0] + whole.moment[0] / whole.area,
-            c0.p[1] + whole.moment[1] / whole.area,
-        ];
-        points.clear();
-        points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
-        let across = shared_edge_normal(&c0, &c1, pa, pb);
-        let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
-        match extras {
-            Extras::Springs => p.springs = corner_springs(pa, pb, points, at),
-            Extras::Push => {
-                let caps = caps_of(out, (k0, k1));
-                let crossing = |v: &ClipVertex| {
-                    let (i, j) = v.crossing().expect("a crossing");
-                    Crossing {
-                        at: v.p,
-                        particle: edge_normal(pa, i),
-                        partner: edge_normal(pb, j),
-                    }
-                };
-                (p.potential, p.push) =
-                    potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
-            }
-            Extras::Nothing => {}
-        }
-        Some(p)
+        out.clear();
+        out.extend(held.overlap.iter().map(|&(before, after)| ClipVertex {
+            p: meet(before, after, pa, pb),
+            before,
+            after,
+        }));
+        let [k0, k1] = held.chord;
+        patch_of(out, (k0, k1), (pa, pb), at, Extras::Push, points)
     })
+}
+
+/// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
+/// crossing of the two lines (interpolated along the first's edge, from its end nearer the
+/// other line).
+fn meet(l1: EdgeLine, l2: EdgeLine, pa: &[[f64; 2]], pb: &[[f64; 2]]) -> [f64; 2] {
+    let line = |l: EdgeLine| match l {
+        EdgeLine::A(i) => ends(pa, i),
+        EdgeLine::B(j) => ends(pb, j),
+    };
+    match (l1, l2) {
+        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == (i as usize + 1) % pa.len() => {
+            pa[k as usize]
+        }
+        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == (j as usize + 1) % pb.len() => {
+            pb[k as usize]
+        }
+        // Along the particle's edge, as the clip takes it (`convex_clip::exact_position`).
+        (EdgeLine::B(_), EdgeLine::A(_)) => edge_crossing(line(l2), line(l1), line(l2)[0]),
+        _ => edge_crossing(line(l1), line(l2), line(l1)[0]),
+    }
+}
+
+/// The two ends of edge `k` of the polygon `v`.
+fn ends(v: &[[f64; 2]], k: u32) -> [[f64; 2]; 2] {
+    let k = k as usize;
+    [v[k], v[(k + 1) % v.len()]]
+}
+
+/// How far the held overlap's crossings have gone past the ends of their edges (> 0: a
+/// crossing has passed a corner, the held overlap is no longer the bodies' and the force
+/// turns there), in units of the edges' lengths, less a margin of 1e-9 so that an overlap held
+/// at a switch does not fire again on round-off.
+pub(super) fn held_overlap_value(pa: &[[f64; 2]], pb: &[[f64; 2]], held: &HeldSprings) -> f64 {
+    let mut value = f64::NEG_INFINITY;
+    for &(before, after) in &held.overlap {
+        let (i, j) = match (before, after) {
+            (EdgeLine::A(i), EdgeLine::B(j)) | (EdgeLine::B(j), EdgeLine::A(i)) => (i, j),
+            _ => continue,
+        };
+        let (ea, eb) = (ends(pa, i), ends(pb, j));
+        for (e, other) in [(ea, eb), (eb, ea)] {
+            let d = sub(other[1], other[0]);
+            let side = |p: [f64; 2]| d[0] * (p[1] - other[0][1]) - d[1] * (p[0] - other[0][0]);
+            let (s0, s1) = (side(e[0]), side(e[1]));
+            if s0 == s1 {
+                continue;
+            }
+            let t = s0 / (s0 - s1);
+            value = value.max((-t).max(t - 1.0));
+        }
+    }
+    value - 1e-9
 }
 
 /// The two crossings farthest apart (the only two in a shallow contact; docs/model.md 17.8

@@ -173,3 +173,31 @@ fn measure_push_jumps() {
         );
     }
 }
+
+/// The overlap held through a piece of the adaptive path is the bodies' own where it was held
+/// (the same push), its switch has not fired there, and it fires once a crossing has passed
+/// a corner (the held value, continuous, changes sign between the two).
+#[test]
+fn the_held_overlap_is_the_overlap_until_its_switch() {
+    use crate::geometry::pair::PairGeometry;
+    for (a, b, q) in cases() {
+        let pair = ShapePair::new(&a, &b).unwrap();
+        if pair.polygons().is_none() {
+            continue;
+        }
+        let held = pair.held_springs(&q);
+        assert!(!held.overlap.is_empty(), "{q:?}");
+        let (own, kept) = (pair.frame(&q).unwrap(), pair.frame_held(&q, &held).unwrap());
+        assert_eq!(own.area_push, kept.area_push, "{q:?}");
+        assert!(pair.held_springs_value(&q, &held) < 0.0);
+        // Slide sideways until the overlap's vertices are no longer the held ones.
+        let mut moved = q;
+        while pair.held_springs(&moved).overlap == held.overlap {
+            moved[0] += 1e-5 * pair.reach();
+        }
+        assert!(
+            pair.held_springs_value(&moved, &held) > 0.0,
+            "{q:?} -> {moved:?}"
+        );
+    }
+}

@@ -161,7 +161,10 @@ pub(super) fn held_corner_springs(
             })
         })
         .collect();
-    HeldSprings { springs }
+    HeldSprings {
+        springs,
+        ..HeldSprings::default()
+    }
 }
 
 /// Each corner of either body within the other's circumradius (`reach`: the particle's and
