@@ -1,11 +1,12 @@
 //! Where a pair with corners meets (docs/model.md, section 17.8): a polygon with a polygon
-//! (parry's convex-convex intersection, as for a general obstacle) and a disc with a polygon
-//! (closed form: the polygon clipped by the circle, plus the circular segments its arcs cut).
+//! (the O(n + m) convex clip, `polygon_polygon.rs`) and a disc with a polygon (closed form:
+//! the polygon clipped by the circle, plus the circular segments its arcs cut). The area
+//! law's elastic force is the gradient of a potential (`potential.rs`).
 //!
 //! Everything is in the partner's frame: the partner's centre at the origin, the particle's at
 //! q = (x, y); each body turned by its own angle. As on the plate (section 3), the contact's
 //! chord joins the two points where the boundaries cross, the normal n is perpendicular to it
-//! (towards the particle), and the forces act at the overlap's centroid. Two facts make the
+//! (towards the particle), and friction acts at the overlap's centroid. Two facts make the
 //! area law's damping exact and keep angular momentum (section 17.8): moving the particle by
 //! dq changes the area by -l n.dq, and turning body i by dphi_i changes it by b_i dphi_i, with
 //! b_1 = (|p_a - q|^2 - |p_b - q|^2) / 2 and b_2 = (|p_b|^2 - |p_a|^2) / 2 from the chord's ends
@@ -16,6 +17,7 @@ use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
 use disc_polygon::{disc_polygon, DiscRole};
+use gap::{distance_to_polygon, inside, polygons_overlap, vertices_distance};
 use polygon_polygon::{held_overlap, held_overlap_value, held_patch, polygon_patch, Extras};
 use springs::{
     disc_spring, held_corner_springs, held_springs_value, parted_disc_patch, parted_patch,
@@ -426,72 +428,6 @@ impl PairGeometry for ShapePair<'_> {
     }
 }
 
-fn inside(p: [f64; 2], b: &[[f64; 2]]) -> bool {
-    let n = b.len();
-    (0..n).all(|j| cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) >= 0.0)
-}
-
-/// Squared distance from point `p` to segment a-b.
-fn segment_distance2(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (d, w) = (sub(b, a), sub(p, a));
-    let t = (dot(w, d) / dot(d, d)).clamp(0.0, 1.0);
-    let e = [w[0] - t * d[0], w[1] - t * d[1]];
-    dot(e, e)
-}
-
-/// Distance from `p` to the boundary of polygon `b` (0 inside).
-fn distance_to_polygon(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
-    if inside(p, b) {
-        return 0.0;
-    }
-    let n = b.len();
-    (0..n)
-        .map(|j| segment_distance2(p, b[j], b[(j + 1) % n]))
-        .fold(f64::INFINITY, f64::min)
-        .sqrt()
-}
-
-/// Whether the convex polygons `a` (centred near `q`) and `b` overlap: the O(n + m) clip.
-fn polygons_overlap(a: &[[f64; 2]], b: &[[f64; 2]], q: [f64; 2]) -> bool {
-    thread_local! {
-        static BUF: RefCell<PlacedClip> = const { RefCell::new((Vec::new(), Vec::new())) };
-    }
-    BUF.with(|cell| {
-        let (out, next) = &mut *cell.borrow_mut();
-        crate::geometry::convex_clip::clip_convex(a, b, q, out, next)
-    })
-}
-
-/// The clip's two buffers.
-type PlacedClip = (
-    Vec<crate::geometry::convex_clip::ClipVertex>,
-    Vec<crate::geometry::convex_clip::ClipVertex>,
-);
-
-/// The smallest distance from a vertex of `a` to polygon `b` (centred at `centre`, circumradius
-/// `r`), both convex and apart: vertices farther from the centre than r plus the best distance
-/// so far cannot be nearer, so only the few facing `b` are measured against its edges.
-fn vertices_distance(a: &[[f64; 2]], b: &[[f64; 2]], centre: [f64; 2], r: f64) -> f64 {
-    let reach = |p: [f64; 2]| {
-        let d = sub(p, centre);
-        dot(d, d).sqrt() - r
-    };
-    let Some(first) = a
-        .iter()
-        .copied()
-        .min_by(|x, y| reach(*x).total_cmp(&reach(*y)))
-    else {
-        return f64::INFINITY;
-    };
-    let mut best = distance_to_polygon(first, b);
-    for &p in a {
-        if reach(p) < best {
-            best = best.min(distance_to_polygon(p, b));
-        }
-    }
-    best
-}
-
 /// The largest height h at which a corner of `a` (vertices relative to its centre, placed at
 /// (0, h)) lies on the top of `b` (centred at the origin): over the corners above b's
 /// upward-facing edges.
@@ -605,6 +541,7 @@ fn assemble(
 }
 
 mod disc_polygon;
+mod gap;
 mod polygon_polygon;
 pub(crate) mod potential;
 #[cfg(test)]

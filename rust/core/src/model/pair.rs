@@ -141,7 +141,7 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
         "overlap",
         scene.overlap.name(),
         "\"auto\" for a pair (a pair's overlap is its pairing's own: the lens of two discs, \
-         the disc-polygon clip or parry's intersection of two polygons)"
+         the disc-polygon clip or the convex clip of two polygons)"
     );
     // Corners' dashpots jump as they enter the other body, which Verlet cannot step over (as
     // on the plate); Gear-5 steps through them, the adaptive path locates them, holding the

@@ -35,7 +35,7 @@ fn least_penetration(x: [f64; 2], poly: &[[f64; 2]]) -> (f64, [f64; 2], usize) {
 
 /// The vertex springs of two polygons (placed vertices `a` of the particle, `b` of the
 /// partner): each corner of one inside the other, `corners` the overlap's vertices (the
-/// unmarked ones are corners; parry hands back a vertex's own coordinates), pressing along
+/// unmarked ones are corners, at the vertex's own coordinates), pressing along
 /// the outward normal of the edge it is nearest to, as deep as it lies below that edge.
 pub(super) fn corner_springs(
     a: &[[f64; 2]],
