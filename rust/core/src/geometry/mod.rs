@@ -3,6 +3,7 @@
 //! intersection through parry for any convex obstacle.
 
 pub mod chain;
+pub mod convex_clip;
 pub mod disc;
 pub mod overlap;
 pub mod pair;

@@ -8,6 +8,7 @@
 //! in the depth at shallow overlap), from its own depth, written without cancellation:
 //! h1 = delta (2 r2 - delta) / (2 d) with delta = r1 + r2 - d.
 
+use super::convex_clip::EdgeLine;
 use super::disc::disc_segment_at;
 
 /// Where a pair's forces act at one configuration, as the laws read it (docs/model.md,
@@ -24,8 +25,10 @@ pub struct PairFrame {
     pub area: f64,
     /// Chord length l (m): dA/dt = -l (g_n + lever_rate_area . omega).
     pub chord: f64,
-    /// Lever of the area law's elastic force (acting at the overlap's centroid).
-    pub lever_area: [f64; 2],
+    /// The area law's elastic force on the lanes per unit stiffness, -grad W of its
+    /// potential (bodies with corners: `pair_shapes/potential.rs`; round bodies act along n
+    /// without it).
+    pub area_push: [f64; 4],
     /// Lever of the area law's damping: -b_i / l (dA/dt's terms in the spins).
     pub lever_rate_area: [f64; 2],
     /// Lever of the tangential force (along t, at the overlap's centroid).
@@ -98,14 +101,20 @@ pub struct SpringRef {
     pub edge: u32,
 }
 
-/// The vertex springs held through a piece of the adaptive path: between their switches
-/// (a corner entering or leaving the other body, or turning to another nearest edge) the
-/// law is smooth, and the switches are located as events; empty for pairings whose law is
-/// smooth without holding anything.
+/// What a piece of the adaptive path holds between its switches, so that the law is smooth
+/// there and the switches are located as events: the linear law's vertex springs (a switch
+/// where a corner enters or leaves the other body, or turns to another nearest edge), or the
+/// area law's overlap of two polygons (its vertices as the pairs of edge lines they lie on: a
+/// switch where a crossing of the boundaries passes a corner, where the potential's force
+/// jumps); empty for pairings whose law is smooth without holding anything.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HeldSprings {
     /// The springs, in no particular order.
     pub springs: Vec<SpringRef>,
+    /// The area law's overlap of two polygons: each vertex's (edge before, edge after).
+    pub overlap: Vec<(EdgeLine, EdgeLine)>,
+    /// The overlap's two vertices that are the chord's ends.
+    pub chord: [usize; 2],
 }
 
 /// How a pair's two bodies overlap at the lanes q = (x, y, phi1, phi2) (the particle's centre

@@ -1,11 +1,12 @@
 //! Where a pair with corners meets (docs/model.md, section 17.8): a polygon with a polygon
-//! (parry's convex-convex intersection, as for a general obstacle) and a disc with a polygon
-//! (closed form: the polygon clipped by the circle, plus the circular segments its arcs cut).
+//! (the O(n + m) convex clip, `polygon_polygon.rs`) and a disc with a polygon (closed form:
+//! the polygon clipped by the circle, plus the circular segments its arcs cut). The area
+//! law's elastic force is the gradient of a potential (`potential.rs`).
 //!
 //! Everything is in the partner's frame: the partner's centre at the origin, the particle's at
 //! q = (x, y); each body turned by its own angle. As on the plate (section 3), the contact's
 //! chord joins the two points where the boundaries cross, the normal n is perpendicular to it
-//! (towards the particle), and the forces act at the overlap's centroid. Two facts make the
+//! (towards the particle), and friction acts at the overlap's centroid. Two facts make the
 //! area law's damping exact and keep angular momentum (section 17.8): moving the particle by
 //! dq changes the area by -l n.dq, and turning body i by dphi_i changes it by b_i dphi_i, with
 //! b_1 = (|p_a - q|^2 - |p_b - q|^2) / 2 and b_2 = (|p_b|^2 - |p_a|^2) / 2 from the chord's ends
@@ -13,13 +14,14 @@
 //! pair leaves the area unchanged.
 
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
-use super::parry::polygon_pair_overlap;
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
-use disc_polygon::disc_polygon;
+use disc_polygon::{disc_polygon, DiscRole};
+use gap::{distance_to_polygon, inside, polygons_overlap, vertices_distance};
+use polygon_polygon::{held_overlap, held_overlap_value, held_patch, polygon_patch, Extras};
 use springs::{
-    corner_springs, disc_spring, held_corner_springs, held_springs_value, parted_disc_patch,
-    parted_patch, springs_of_held,
+    disc_spring, held_corner_springs, held_springs_value, parted_disc_patch, parted_patch,
+    springs_of_held,
 };
 use std::cell::RefCell;
 
@@ -58,6 +60,12 @@ pub struct ShapePatch {
     pub b: [f64; 2],
     /// The linear law's springs (empty unless the pair asks for them).
     pub springs: Springs,
+    /// The area law's potential integral W = integral of dist(p, chord line) dA over the
+    /// overlap (m^3; 0 unless the pair asks for it).
+    pub potential: f64,
+    /// -grad W on the lanes (x, y, phi1, phi2): the area law's elastic force per unit
+    /// stiffness (m^2 on the position, m^3 on the angles).
+    pub push: [f64; 4],
 }
 
 /// A pair of which at least one body has corners.
@@ -157,12 +165,22 @@ impl<'a> ShapePair<'a> {
         let at = [q[0], q[1]];
         match self.polygons() {
             Some(ab) => with_placed(ab, q, |pa, pb| {
-                polygon_patch(pa, pb, at, self.reach(), self.springs)
+                polygon_patch(pa, pb, at, self.reach(), self.extras())
             }),
             None => {
                 let (c, r, placed, sign) = self.disc_and_polygon(q)?;
                 self.disc_with_polygon(c, r, placed, at, sign)
             }
+        }
+    }
+
+    /// What the overlap carries for the pair's law: the linear law's springs, or the area
+    /// law's push.
+    fn extras(&self) -> Extras {
+        if self.springs {
+            Extras::Springs
+        } else {
+            Extras::Push
         }
     }
 
@@ -231,7 +249,7 @@ impl<'a> ShapePair<'a> {
             depth: p.depth,
             area: p.area,
             chord: p.chord,
-            lever_area: lever(cross(arm, n), n),
+            area_push: p.push,
             lever_rate_area: lever(
                 if p.chord > 0.0 {
                     -p.b[0] / p.chord
@@ -254,10 +272,13 @@ impl<'a> ShapePair<'a> {
                 (PairBody::Polygon(a), PairBody::Polygon(b)) => {
                     place_into(pa, a, at, q[2]);
                     place_into(pb, b, [0.0, 0.0], q[3]);
-                    if inside_any(pa, pb) || inside_any(pb, pa) {
+                    if polygons_overlap(pa, pb, at) {
                         return 0.0;
                     }
-                    point_polygon_distance(pa, pb).min(point_polygon_distance(pb, pa))
+                    let [ra, rb] = self.circumradii();
+                    let to_b = vertices_distance(pa, pb, [0.0, 0.0], rb);
+                    let to_a = vertices_distance(pb, pa, at, ra);
+                    to_b.min(to_a)
                 }
                 (PairBody::Disc(r), PairBody::Polygon(b)) => {
                     place_into(pb, b, [0.0, 0.0], q[3]);
@@ -286,7 +307,11 @@ impl<'a> ShapePair<'a> {
         PLACED.with(|cell| {
             let (verts, _) = &mut *cell.borrow_mut();
             place_into(verts, poly, at, phi);
-            let mut p = disc_polygon(c, r, verts.iter().copied(), q)?;
+            let role = DiscRole {
+                push: !self.springs,
+                disc_is_particle: sign > 0.0,
+            };
+            let mut p = disc_polygon(c, r, verts.iter().copied(), q, role)?;
             if self.springs {
                 p.springs = disc_spring(c, r, verts, q, sign);
             }
@@ -330,7 +355,7 @@ impl PairGeometry for ShapePair<'_> {
     }
 
     fn holds_springs(&self) -> bool {
-        self.springs && self.polygons().is_some()
+        self.polygons().is_some()
     }
 
     fn held_springs(&self, q: &[f64; 4]) -> HeldSprings {
@@ -338,13 +363,22 @@ impl PairGeometry for ShapePair<'_> {
             Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
                 held_corner_springs(pa, pb, [q[0], q[1]], self.circumradii())
             }),
-            _ => HeldSprings::default(),
+            Some(ab) => with_placed(ab, q, |pa, pb| held_overlap(pa, pb, [q[0], q[1]])),
+            None => HeldSprings::default(),
         }
     }
 
     fn frame_held(&self, q: &[f64; 4], held: &HeldSprings) -> Option<PairFrame> {
         if !self.springs {
-            return self.frame(q);
+            // The area law on two polygons: the held overlap continued (its force smooth up
+            // to the located switch where a crossing passes a corner).
+            return match self.polygons() {
+                Some(ab) if !held.overlap.is_empty() => {
+                    let p = with_placed(ab, q, |pa, pb| held_patch(pa, pb, [q[0], q[1]], held))?;
+                    Some(self.frame_of(p, q))
+                }
+                _ => self.frame(q),
+            };
         }
         let Some(ab) = self.polygons() else {
             // A disc with a polygon: its one spring is smooth (C1 where the nearest feature
@@ -359,7 +393,7 @@ impl PairGeometry for ShapePair<'_> {
         // the switches are located on the step's dense output.
         let p = with_placed(ab, q, |pa, pb| {
             let springs = springs_of_held(pa, pb, at, held);
-            match polygon_patch(pa, pb, at, self.reach(), false) {
+            match polygon_patch(pa, pb, at, self.reach(), Extras::Nothing) {
                 Some(p) => Some(ShapePatch { springs, ..p }),
                 None => parted_patch(pa, pb, held, springs),
             }
@@ -372,6 +406,9 @@ impl PairGeometry for ShapePair<'_> {
             Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
                 held_springs_value(pa, pb, [q[0], q[1]], self.circumradii(), held)
             }),
+            Some(ab) if !held.overlap.is_empty() => {
+                with_placed(ab, q, |pa, pb| held_overlap_value(pa, pb, held))
+            }
             _ => f64::NEG_INFINITY,
         }
     }
@@ -389,41 +426,6 @@ impl PairGeometry for ShapePair<'_> {
     fn reach(&self) -> f64 {
         ShapePair::reach(self)
     }
-}
-
-/// Whether any vertex of `a` lies inside (or on) the counter-clockwise convex polygon `b`.
-fn inside_any(a: &[[f64; 2]], b: &[[f64; 2]]) -> bool {
-    a.iter().any(|&p| inside(p, b))
-}
-
-fn inside(p: [f64; 2], b: &[[f64; 2]]) -> bool {
-    let n = b.len();
-    (0..n).all(|j| cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) >= 0.0)
-}
-
-/// Distance from point `p` to segment a-b.
-fn segment_distance(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> f64 {
-    let (d, w) = (sub(b, a), sub(p, a));
-    let t = (dot(w, d) / dot(d, d)).clamp(0.0, 1.0);
-    (w[0] - t * d[0]).hypot(w[1] - t * d[1])
-}
-
-/// Distance from `p` to the boundary of polygon `b`.
-fn distance_to_polygon(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
-    if inside(p, b) {
-        return 0.0;
-    }
-    let n = b.len();
-    (0..n)
-        .map(|j| segment_distance(p, b[j], b[(j + 1) % n]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// The smallest distance from a vertex of `a` to the boundary of `b`.
-fn point_polygon_distance(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
-    a.iter()
-        .map(|&p| distance_to_polygon(p, b))
-        .fold(f64::INFINITY, f64::min)
 }
 
 /// The largest height h at which a corner of `a` (vertices relative to its centre, placed at
@@ -473,66 +475,6 @@ fn disc_over_top(r: f64, b: &[[f64; 2]]) -> f64 {
         }
     }
     best
-}
-
-/// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
-/// partner), parry's intersection within `reach`, with the linear law's corner springs when
-/// `springs`.
-fn polygon_patch(
-    pa: &[[f64; 2]],
-    pb: &[[f64; 2]],
-    at: [f64; 2],
-    reach: f64,
-    springs: bool,
-) -> Option<ShapePatch> {
-    polygon_pair_overlap(
-        pa.iter().copied(),
-        pb.iter().copied(),
-        reach,
-        |patch, points| {
-            let chord = patch.chord?;
-            let across = edge_under(chord, [pa, pb], at, reach);
-            let mut p = assemble(at, patch.area, patch.centroid, chord, points, across)?;
-            if springs {
-                p.springs = corner_springs(pa, pb, points, at);
-            }
-            Some(p)
-        },
-    )?
-}
-
-/// Chords shorter than this part of the reach look for an edge under them (`edge_under`).
-const SHORT_CHORD: f64 = 1e-3;
-
-/// Where a short chord's ends both lie on one edge of either polygon (a corner pressing into
-/// an edge: the overlap a sliver of that edge), the normal of that edge (unnormalised): the
-/// chord's own direction carries the round-off of its ends over its length, 1e-3 at a chord of
-/// 1e-14 m, where the edge's carries it over the edge's. `None` for longer chords and chords
-/// across two edges.
-fn edge_under(
-    chord: [[f64; 2]; 2],
-    polygons: [&[[f64; 2]]; 2],
-    at: [f64; 2],
-    reach: f64,
-) -> Option<[f64; 2]> {
-    let [c0, c1] = chord;
-    let d = sub(c1, c0);
-    if d[0].hypot(d[1]) >= SHORT_CHORD * reach {
-        return None;
-    }
-    let ulps = MIN_CHORD_ULPS * f64::EPSILON * (at[0].abs() + at[1].abs() + reach);
-    for poly in polygons {
-        let n = poly.len();
-        for j in 0..n {
-            let (p, e) = (poly[j], sub(poly[(j + 1) % n], poly[j]));
-            let len = e[0].hypot(e[1]);
-            let off = |x: [f64; 2]| cross(e, sub(x, p)).abs();
-            if off(c0) <= ulps * len && off(c1) <= ulps * len {
-                return Some([-e[1], e[0]]);
-            }
-        }
-    }
-    None
 }
 
 /// A disc with a polygon ([`ShapePair::disc_and_polygon`]): the disc's centre and radius, the
@@ -593,10 +535,17 @@ fn assemble(
         centroid,
         b,
         springs: Springs::default(),
+        potential: 0.0,
+        push: [0.0; 4],
     })
 }
 
 mod disc_polygon;
+mod gap;
+mod polygon_polygon;
+pub(crate) mod potential;
+#[cfg(test)]
+mod potential_tests;
 mod springs;
 #[cfg(test)]
 mod tests;

@@ -222,6 +222,7 @@ pub fn plate_overlap(particle: &Polygon, y: f64, phi: f64) -> Option<Overlap> {
 /// are given in one frame (m), of size about `reach`: its patch and the overlap polygon's
 /// vertices, each marked when it is a crossing of the two boundaries (the others are corners
 /// of one polygon inside the other), handed to `f`. `None` when they do not overlap.
+#[cfg(test)]
 pub(crate) fn polygon_pair_overlap<R>(
     particle: impl Iterator<Item = [f64; 2]>,
     partner: impl Iterator<Item = [f64; 2]>,
@@ -270,7 +271,9 @@ struct Scratch {
     particle: Vec<V>,
     obstacle: Vec<V>,
     out: Vec<(V, bool)>,
-    /// The overlap's vertices in the caller's units (`polygon_pair_overlap`).
+    /// The overlap's vertices in the caller's units (`polygon_pair_overlap`, the reference
+    /// the pairs' own clip is tested against).
+    #[cfg_attr(not(test), allow(dead_code))]
     points: Vec<([f64; 2], bool)>,
 }
 

@@ -210,6 +210,19 @@ impl NormalForce {
             }
         };
         let (f_el, f_d) = match self.law {
+            NormalLaw::Area if levers => {
+                // Bodies with corners: the gradient of the potential (docs/model.md 17.8), whose
+                // part along n is the normal force that friction and the clip read.
+                let el = f.area_push.map(|x| x * self.e_over_l);
+                let f_d = self.area_damping * (-f.chord * (g_n + at(f.lever_rate_area)));
+                let ld = f.lever_rate_area;
+                return PairNormal {
+                    f_el: el[0] * n[0] + el[1] * n[1],
+                    f_d,
+                    el,
+                    damp: [f_d * n[0], f_d * n[1], f_d * ld[0], f_d * ld[1]],
+                };
+            }
             NormalLaw::Area => (
                 f.area * self.e_over_l,
                 self.area_damping * (-f.chord * (g_n + at(f.lever_rate_area))),
@@ -231,16 +244,12 @@ impl NormalForce {
                 (h.k * f.depth * s, h.c * s.sqrt() * -g_n)
             }
         };
-        let (la, ld) = if levers {
-            (f.lever_area, f.lever_rate_area)
-        } else {
-            ([0.0; 2], [0.0; 2])
-        };
+        // Round bodies: the law acts on the line of centres, without torque.
         PairNormal {
             f_el,
             f_d,
-            el: [f_el * n[0], f_el * n[1], f_el * la[0], f_el * la[1]],
-            damp: [f_d * n[0], f_d * n[1], f_d * ld[0], f_d * ld[1]],
+            el: [f_el * n[0], f_el * n[1], 0.0, 0.0],
+            damp: [f_d * n[0], f_d * n[1], 0.0, 0.0],
         }
     }
 

@@ -141,7 +141,7 @@ fn check_pairing(scene: &Scene, partner: &Partner) -> Result<()> {
         "overlap",
         scene.overlap.name(),
         "\"auto\" for a pair (a pair's overlap is its pairing's own: the lens of two discs, \
-         the disc-polygon clip or parry's intersection of two polygons)"
+         the disc-polygon clip or the convex clip of two polygons)"
     );
     // Corners' dashpots jump as they enter the other body, which Verlet cannot step over (as
     // on the plate); Gear-5 steps through them, the adaptive path locates them, holding the
@@ -242,10 +242,21 @@ fn effective_law(
         }
     };
     let mindlin = hertz.is_some() && scene.tangential != TangentialModel::Linear;
+    let area_damping = scene.gamma * (m_star * law_scene.e_modulus).sqrt() / length;
+    // Bodies with corners under the area law: the potential's stiffness E* (1 + E_min / E_max)
+    // / L (docs/model.md 17.8), folded into the length so that the force and the rate bound
+    // read it; the damping keeps E* / L.
+    let corners = |s: &Shape| matches!(s, Shape::Polygon(_));
+    let length = if scene.normal_law == NormalLaw::Area
+        && (corners(&scene.shape) || corners(&partner.shape))
+    {
+        length / (1.0 + e1.min(mat.e) / e1.max(mat.e))
+    } else {
+        length
+    };
     let inertia = r_eff * r_eff / (1.0 / m_t - 1.0 / m_star);
     let (kt, ct) = tangential_constants(&law_scene, hertz.filter(|_| mindlin), stiffness, m_t);
     let t_ref = (m_star / stiffness).sqrt();
-    let area_damping = scene.gamma * (m_star * law_scene.e_modulus).sqrt() / length;
     for (name, v) in [("partner_rho", m_star), ("kt", kt), ("partner_E", t_ref)] {
         ensure_param!(
             v.is_finite() && v > 0.0,

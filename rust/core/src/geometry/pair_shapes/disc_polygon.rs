@@ -1,17 +1,30 @@
 //! The overlap of a disc with a convex polygon in closed form (docs/model.md, 17.8): the
 //! polygon clipped by the circle, plus the circular segments its arcs cut beyond their chords.
 
+use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::{assemble, cross, dot, sub, ShapePatch};
 use crate::geometry::disc::disc_segment_at;
 use std::cell::RefCell;
 
 /// The disc-polygon overlap's buffers: the polygon relative to the circle's centre, the
-/// overlap polygon's vertices (crossings marked) and which of them are exits.
+/// overlap polygon's vertices (crossings marked), which of them are exits and the polygon's
+/// edge each lies on.
 #[derive(Default)]
 struct DiscScratch {
     verts: Vec<[f64; 2]>,
     points: Vec<([f64; 2], bool)>,
     exits: Vec<bool>,
+    edges: Vec<usize>,
+}
+
+/// What the disc-polygon overlap is asked for beside its patch: whether the area law's push
+/// is wanted, and whether the disc is the particle.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct DiscRole {
+    /// Compute the area law's potential and push.
+    pub push: bool,
+    /// The disc is the particle (else the partner).
+    pub disc_is_particle: bool,
 }
 
 thread_local! {
@@ -28,6 +41,7 @@ pub(super) fn disc_polygon(
     r: f64,
     poly: impl Iterator<Item = [f64; 2]>,
     q: [f64; 2],
+    role: DiscRole,
 ) -> Option<ShapePatch> {
     DISC_SCRATCH.with(|cell| {
         let mut buf = cell.borrow_mut();
@@ -35,12 +49,14 @@ pub(super) fn disc_polygon(
             verts,
             points,
             exits,
+            edges,
         } = &mut *buf;
         verts.clear();
         verts.extend(poly.map(|p| sub(p, c)));
         points.clear();
         exits.clear();
-        clip_by_circle(verts, r, points, exits);
+        edges.clear();
+        clip_by_circle(verts, r, points, exits, edges);
         if points.is_empty() {
             // No edge reaches the circle: the disc lies inside the polygon, or apart.
             return None;
@@ -50,7 +66,11 @@ pub(super) fn disc_polygon(
         let mut n_apex = 0;
         let k = points.len();
         let mut chord: Option<[[f64; 2]; 2]> = None;
+        let mut chord_at = 0;
         let mut best = -1.0;
+        // The disc's cap: every segment (one in a shallow contact), area and first moment
+        // about the circle's centre.
+        let mut disc_cap = Cap::default();
         for i in 0..k {
             // An arc runs from an exit crossing to the next point, an entry crossing.
             if !exits[i] {
@@ -61,6 +81,9 @@ pub(super) fn disc_polygon(
             moment[0] += seg_area * seg_centroid[0];
             moment[1] += seg_area * seg_centroid[1];
             area += seg_area;
+            disc_cap.area += seg_area;
+            disc_cap.moment[0] += seg_area * seg_centroid[0];
+            disc_cap.moment[1] += seg_area * seg_centroid[1];
             if n_apex < apexes.len() {
                 apexes[n_apex] = apex;
                 n_apex += 1;
@@ -68,6 +91,7 @@ pub(super) fn disc_polygon(
             if len2 > best {
                 best = len2;
                 chord = Some([exit, entry]);
+                chord_at = i;
             }
         }
         if !(area > 0.0) {
@@ -75,6 +99,43 @@ pub(super) fn disc_polygon(
         }
         let centroid = [c[0] + moment[0] / area, c[1] + moment[1] / area];
         let [a, b] = chord?;
+        // The polygon's cap (its part inside the circle, closed by the chords) and the
+        // disc's, with first moments about the chord's first end; the crossings' normals.
+        let caps = role.push.then(|| {
+            let poly_cap = polygon_cap(points.iter().map(|p| p.0), a);
+            let disc_cap = Cap {
+                area: disc_cap.area,
+                moment: [
+                    disc_cap.moment[0] - disc_cap.area * a[0],
+                    disc_cap.moment[1] - disc_cap.area * a[1],
+                ],
+            };
+            let k = points.len();
+            let edge_normal = |i: usize| {
+                let j = edges[i];
+                let e = sub(verts[(j + 1) % verts.len()], verts[j]);
+                [e[1], -e[0]]
+            };
+            let crossing = |i: usize, p: [f64; 2]| {
+                let (disc_n, poly_n) = (p, edge_normal(i));
+                let (particle, partner) = if role.disc_is_particle {
+                    (disc_n, poly_n)
+                } else {
+                    (poly_n, disc_n)
+                };
+                Crossing {
+                    at: [p[0] + c[0], p[1] + c[1]],
+                    particle,
+                    partner,
+                }
+            };
+            let crossings = [crossing(chord_at, a), crossing((chord_at + 1) % k, b)];
+            if role.disc_is_particle {
+                ([disc_cap, poly_cap], crossings)
+            } else {
+                ([poly_cap, disc_cap], crossings)
+            }
+        });
         for apex in &apexes[..n_apex] {
             points.push((*apex, false));
         }
@@ -88,7 +149,11 @@ pub(super) fn disc_polygon(
         // at a chord of 1e-14 m, which set a spring's elongation at stick 5e-4 apart between
         // tolerances).
         let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
-        assemble(q, area, centroid, chord, points, Some(mid))
+        let mut patch = assemble(q, area, centroid, chord, points, Some(mid))?;
+        if let Some((caps, crossings)) = caps {
+            (patch.potential, patch.push) = potential_push(q, patch.n, crossings, caps);
+        }
+        Some(patch)
     })
 }
 
@@ -100,6 +165,7 @@ fn clip_by_circle(
     r: f64,
     out: &mut Vec<([f64; 2], bool)>,
     exits: &mut Vec<bool>,
+    edges: &mut Vec<usize>,
 ) {
     let n = verts.len();
     for j in 0..n {
@@ -125,6 +191,7 @@ fn clip_by_circle(
         if t0 > 0.0 {
             out.push((at(t0), true));
             exits.push(false);
+            edges.push(j);
         }
         if t1 < 1.0 {
             out.push((at(t1), true));
@@ -133,6 +200,7 @@ fn clip_by_circle(
             out.push((q, false));
             exits.push(false);
         }
+        edges.push(j);
     }
 }
 

@@ -35,7 +35,7 @@ fn least_penetration(x: [f64; 2], poly: &[[f64; 2]]) -> (f64, [f64; 2], usize) {
 
 /// The vertex springs of two polygons (placed vertices `a` of the particle, `b` of the
 /// partner): each corner of one inside the other, `corners` the overlap's vertices (the
-/// unmarked ones are corners; parry hands back a vertex's own coordinates), pressing along
+/// unmarked ones are corners, at the vertex's own coordinates), pressing along
 /// the outward normal of the edge it is nearest to, as deep as it lies below that edge.
 pub(super) fn corner_springs(
     a: &[[f64; 2]],
@@ -137,6 +137,7 @@ pub(super) fn parted_disc_patch(
         centroid: x,
         b: [0.0; 2],
         springs: one_spring(depth, x, n, q),
+        ..ShapePatch::default()
     }
 }
 
@@ -160,7 +161,10 @@ pub(super) fn held_corner_springs(
             })
         })
         .collect();
-    HeldSprings { springs }
+    HeldSprings {
+        springs,
+        ..HeldSprings::default()
+    }
 }
 
 /// Each corner of either body within the other's circumradius (`reach`: the particle's and
@@ -287,5 +291,6 @@ pub(super) fn parted_patch(
         centroid,
         b: [0.0; 2],
         springs,
+        ..ShapePatch::default()
     })
 }

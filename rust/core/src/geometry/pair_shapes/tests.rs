@@ -6,7 +6,7 @@ fn square(r: f64) -> Shape {
     Shape::Polygon(std::sync::Arc::new(Polygon::regular(r, 4).unwrap()))
 }
 
-fn ngon(r: f64, n: usize) -> Shape {
+pub(super) fn ngon(r: f64, n: usize) -> Shape {
     Shape::Polygon(std::sync::Arc::new(Polygon::regular(r, n).unwrap()))
 }
 
@@ -45,7 +45,7 @@ fn grid_area(pair: &ShapePair, q: &[f64; 4], centre: [f64; 2], half: f64) -> f64
 
 /// The particle's touch height above the partner at horizontal offset `x`, by bisection on
 /// the gap.
-fn touch_at(pair: &ShapePair, x: f64, phi1: f64, phi2: f64) -> f64 {
+pub(super) fn touch_at(pair: &ShapePair, x: f64, phi1: f64, phi2: f64) -> f64 {
     let (mut lo, mut hi) = (0.0, pair.reach());
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
@@ -60,7 +60,7 @@ fn touch_at(pair: &ShapePair, x: f64, phi1: f64, phi2: f64) -> f64 {
 
 /// Configurations of each pairing at a moderate overlap: corners into faces, faces on
 /// corners, a disc on a face and on a corner.
-fn cases() -> Vec<(Shape, Shape, [f64; 4])> {
+pub(super) fn cases() -> Vec<(Shape, Shape, [f64; 4])> {
     let (r, r2) = (0.01, 0.013);
     let mut out = Vec::new();
     for (a, b) in [

@@ -1,0 +1,262 @@
+//! The overlap of two convex polygons (docs/model.md, 17.8): the O(n + m) clip
+//! ([`crate::geometry::convex_clip`]), its chord through the two crossings of the boundaries,
+//! and the area law's conservative push from the potential of `potential.rs`.
+
+use super::potential::{polygon_cap, potential_push, Cap, Crossing};
+use super::springs::corner_springs;
+use super::{assemble, sub, ShapePatch};
+use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine};
+use crate::geometry::pair::HeldSprings;
+use std::cell::RefCell;
+
+/// What the overlap carries beside its area, chord and normal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Extras {
+    /// Nothing more (the held springs are added by the caller).
+    Nothing,
+    /// The linear law's corner springs.
+    Springs,
+    /// The area law's potential and its push.
+    Push,
+}
+
+/// Reused buffers: the clip's two polygons and the overlap's points with their crossing marks.
+#[derive(Default)]
+struct ClipScratch {
+    out: Vec<ClipVertex>,
+    next: Vec<ClipVertex>,
+    points: Vec<([f64; 2], bool)>,
+}
+
+thread_local! {
+    static CLIP: RefCell<ClipScratch> = RefCell::new(ClipScratch::default());
+}
+
+/// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
+/// partner), with what `extras` asks for; `None` when apart, touching, or without two
+/// crossings (one inside the other).
+pub(super) fn polygon_patch(
+    pa: &[[f64; 2]],
+    pb: &[[f64; 2]],
+    at: [f64; 2],
+    reach: f64,
+    extras: Extras,
+) -> Option<ShapePatch> {
+    if at[0] * at[0] + at[1] * at[1] >= reach * reach {
+        return None;
+    }
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch { out, next, points } = &mut *buf;
+        if !clip_convex(pa, pb, at, out, next) {
+            return None;
+        }
+        let chord = farthest_crossings(out)?;
+        patch_of(out, chord, (pa, pb), at, extras, points)
+    })
+}
+
+/// The patch of the overlap `out` (the clip's vertices) with the chord between its vertices
+/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`.
+fn patch_of(
+    out: &[ClipVertex],
+    (k0, k1): (usize, usize),
+    (pa, pb): (&[[f64; 2]], &[[f64; 2]]),
+    at: [f64; 2],
+    extras: Extras,
+    points: &mut Vec<([f64; 2], bool)>,
+) -> Option<ShapePatch> {
+    let (c0, c1) = (out[k0], out[k1]);
+    let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
+    if !(whole.area > 0.0) {
+        return None;
+    }
+    let centroid = [
+        c0.p[0] + whole.moment[0] / whole.area,
+        c0.p[1] + whole.moment[1] / whole.area,
+    ];
+    points.clear();
+    points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
+    let across = shared_edge_normal(&c0, &c1, pa, pb);
+    let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
+    match extras {
+        Extras::Springs => p.springs = corner_springs(pa, pb, points, at),
+        Extras::Push => {
+            let caps = caps_of(out, (k0, k1));
+            let crossing = |v: &ClipVertex| {
+                let (i, j) = v.crossing().expect("a crossing");
+                Crossing {
+                    at: v.p,
+                    particle: edge_normal(pa, i),
+                    partner: edge_normal(pb, j),
+                }
+            };
+            (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
+        }
+        Extras::Nothing => {}
+    }
+    Some(p)
+}
+
+/// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
+/// (docs/model.md 17.8): its vertices' edge lines and its chord; empty when apart.
+pub(super) fn held_overlap(pa: &[[f64; 2]], pb: &[[f64; 2]], at: [f64; 2]) -> HeldSprings {
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch { out, next, .. } = &mut *buf;
+        match clip_convex(pa, pb, at, out, next)
+            .then(|| farthest_crossings(out))
+            .flatten()
+        {
+            Some((k0, k1)) => HeldSprings {
+                overlap: out.iter().map(|v| (v.before, v.after)).collect(),
+                chord: [k0, k1],
+                ..HeldSprings::default()
+            },
+            None => HeldSprings::default(),
+        }
+    })
+}
+
+/// The area law's patch with the overlap `held` continued smoothly: each held vertex where its
+/// two edge lines meet, whether or not a crossing has passed the end of its edge since (the
+/// switch is located by [`held_overlap_value`]); `None` when the bodies do not overlap, or the
+/// continued overlap has no area.
+pub(super) fn held_patch(
+    pa: &[[f64; 2]],
+    pb: &[[f64; 2]],
+    at: [f64; 2],
+    held: &HeldSprings,
+) -> Option<ShapePatch> {
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch { out, next, points } = &mut *buf;
+        if !clip_convex(pa, pb, at, out, next) {
+            return None;
+        }
+        out.clear();
+        out.extend(held.overlap.iter().map(|&(before, after)| ClipVertex {
+            p: meet(before, after, pa, pb),
+            before,
+            after,
+        }));
+        let [k0, k1] = held.chord;
+        patch_of(out, (k0, k1), (pa, pb), at, Extras::Push, points)
+    })
+}
+
+/// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
+/// crossing of the two lines (interpolated along the first's edge, from its end nearer the
+/// other line).
+fn meet(l1: EdgeLine, l2: EdgeLine, pa: &[[f64; 2]], pb: &[[f64; 2]]) -> [f64; 2] {
+    let line = |l: EdgeLine| match l {
+        EdgeLine::A(i) => ends(pa, i),
+        EdgeLine::B(j) => ends(pb, j),
+    };
+    match (l1, l2) {
+        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == (i as usize + 1) % pa.len() => {
+            pa[k as usize]
+        }
+        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == (j as usize + 1) % pb.len() => {
+            pb[k as usize]
+        }
+        // Along the particle's edge, as the clip takes it (`convex_clip::exact_position`).
+        (EdgeLine::B(_), EdgeLine::A(_)) => edge_crossing(line(l2), line(l1), line(l2)[0]),
+        _ => edge_crossing(line(l1), line(l2), line(l1)[0]),
+    }
+}
+
+/// The two ends of edge `k` of the polygon `v`.
+fn ends(v: &[[f64; 2]], k: u32) -> [[f64; 2]; 2] {
+    let k = k as usize;
+    [v[k], v[(k + 1) % v.len()]]
+}
+
+/// How far the held overlap's crossings have gone past the ends of their edges (> 0: a
+/// crossing has passed a corner, the held overlap is no longer the bodies' and the force
+/// turns there), in units of the edges' lengths, less a margin of 1e-9 so that an overlap held
+/// at a switch does not fire again on round-off.
+pub(super) fn held_overlap_value(pa: &[[f64; 2]], pb: &[[f64; 2]], held: &HeldSprings) -> f64 {
+    let mut value = f64::NEG_INFINITY;
+    for &(before, after) in &held.overlap {
+        let (i, j) = match (before, after) {
+            (EdgeLine::A(i), EdgeLine::B(j)) | (EdgeLine::B(j), EdgeLine::A(i)) => (i, j),
+            _ => continue,
+        };
+        let (ea, eb) = (ends(pa, i), ends(pb, j));
+        for (e, other) in [(ea, eb), (eb, ea)] {
+            let d = sub(other[1], other[0]);
+            let side = |p: [f64; 2]| d[0] * (p[1] - other[0][1]) - d[1] * (p[0] - other[0][0]);
+            let (s0, s1) = (side(e[0]), side(e[1]));
+            if s0 == s1 {
+                continue;
+            }
+            let t = s0 / (s0 - s1);
+            value = value.max((-t).max(t - 1.0));
+        }
+    }
+    value - 1e-9
+}
+
+/// The two crossings farthest apart (the only two in a shallow contact; docs/model.md 17.8
+/// states the rule for more).
+fn farthest_crossings(out: &[ClipVertex]) -> Option<(usize, usize)> {
+    let mut best: Option<(f64, usize, usize)> = None;
+    let crossings = || {
+        out.iter()
+            .enumerate()
+            .filter(|(_, v)| v.crossing().is_some())
+    };
+    for (i, a) in crossings() {
+        for (j, b) in crossings().filter(|&(j, _)| j > i) {
+            let d = sub(b.p, a.p);
+            let len2 = d[0] * d[0] + d[1] * d[1];
+            if best.is_none_or(|(l, _, _)| len2 > l) {
+                best = Some((len2, i, j));
+            }
+        }
+    }
+    best.map(|(_, i, j)| (i, j))
+}
+
+/// The outward normal (unnormalised) of edge `k` of the counter-clockwise polygon `v`.
+fn edge_normal(v: &[[f64; 2]], k: u32) -> [f64; 2] {
+    let k = k as usize;
+    let e = sub(v[(k + 1) % v.len()], v[k]);
+    [e[1], -e[0]]
+}
+
+/// Where both crossings lie on one edge of either polygon (a corner pressed into an edge: the
+/// chord lies on that edge), that edge's normal: exact, where the chord's own direction carries
+/// the round-off of its ends over its length (1e-3 at a chord of 1e-14 m).
+fn shared_edge_normal(
+    c0: &ClipVertex,
+    c1: &ClipVertex,
+    pa: &[[f64; 2]],
+    pb: &[[f64; 2]],
+) -> Option<[f64; 2]> {
+    let ((i0, j0), (i1, j1)) = (c0.crossing()?, c1.crossing()?);
+    if i0 == i1 {
+        Some(edge_normal(pa, i0))
+    } else if j0 == j1 {
+        Some(edge_normal(pb, j0))
+    } else {
+        None
+    }
+}
+
+/// The particle's and the partner's caps: the overlap cut by the chord between crossings
+/// `k0` and `k1`, each part with the first moment about crossing `k0`. The part whose
+/// boundary leaves `k0` along an edge of the particle is the particle's.
+fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
+    let len = out.len();
+    let o = out[k0].p;
+    let forward = polygon_cap((k0..=k1).map(|k| out[k].p), o);
+    let back = polygon_cap((k1..=k0 + len).map(|k| out[k % len].p), o);
+    let particle_first = matches!(out[k0].after, crate::geometry::convex_clip::EdgeLine::A(_));
+    if particle_first {
+        [forward, back]
+    } else {
+        [back, forward]
+    }
+}
