@@ -6,7 +6,7 @@
 //! Target (issue 4): <= 1 us per step for the 120-gon on the half-plane path. The summary
 //! prints ns per step and the ratio to the disc, all measured in this one run.
 //!
-//! `CARGO_TARGET_DIR=/work/target-shapes cargo bench -p restitution-core --bench shapes`
+//! `cargo bench -p restitution-core --bench shapes`
 
 use criterion::{Criterion, Throughput};
 use restitution_core::{simulate, Initial, OverlapMethod, Scene, Shape};
