@@ -50,6 +50,7 @@ use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use control::step_factor;
 pub(crate) use run::integrate;
+pub(crate) use switches::{sampled_first_switch, TANGENTIAL_PARTS};
 
 /// Settings of the reference integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]

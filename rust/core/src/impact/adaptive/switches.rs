@@ -130,11 +130,9 @@ impl Reference<'_> {
     }
 
     /// The first switch of `ev` inside `step` from its function sampled at `parts` equal
-    /// parts (`g0` its value at the start, computed only when needed: off the disc the slip ->
-    /// stick test differences two more evaluations of the law; `g1` at the end): the first positive
-    /// sample's, or, where every sample is negative, one that fires and clears again between
-    /// three samples around a local maximum (see [`grazes`]): Brent's search for that maximum
-    /// on the dense output.
+    /// parts ([`sampled_first_switch`]; `g0` its value at the start, computed only when needed: off
+    /// the disc the slip -> stick test differences two more evaluations of the law; `g1` at the
+    /// end), located on the dense output.
     fn sampled_switch(
         &self,
         m: &Mode,
@@ -143,52 +141,12 @@ impl Reference<'_> {
         parts: usize,
         (g0, g1): (impl Fn() -> f64, f64),
     ) -> Option<f64> {
-        let w = 1.0 / parts as f64;
-        let mut g = [0.0; MAX_PARTS + 1];
-        for k in 1..=parts {
-            g[k] = if k == parts {
-                g1
-            } else {
-                self.value_at(m, ev, step, k as f64 * w)
-            };
-            if g[k] > 0.0 {
-                let before = if k == 1 { g0() } else { g[k - 1] };
-                let before = ((k - 1) as f64 * w, Some(before));
-                return Some(self.locate_in(m, ev, step, before, (k as f64 * w, g[k])));
-            }
-        }
-        // A peak between the start and the first sample shows only with the start's value:
-        // the function falls from the first sample to the second.
-        let first = if g[1] >= g[2] {
-            g[0] = g0();
-            0
-        } else {
-            1
-        };
-        let k = first + grazes(&g[first..=parts])?;
-        let value = |th: f64| self.value_at(m, ev, step, th);
-        let positive = std::cell::Cell::new(None);
-        let (lo, hi) = ((k - 1) as f64 * w, (k + 1) as f64 * w);
-        roots::peak(
-            |th| {
-                let v = value(th);
-                if v > 0.0 && positive.get().is_none() {
-                    positive.set(Some((th, v)));
-                }
-                v
-            },
-            (lo, hi),
-            g[k],
-            1e-6 * w,
-        );
-        let (th, v) = positive.get()?;
-        // The root before the positive point (the samples left of it are negative).
-        let from = if th < k as f64 * w {
-            (lo, g[k - 1])
-        } else {
-            (k as f64 * w, g[k])
-        };
-        Some(self.locate_in(m, ev, step, (from.0, Some(from.1)), (th, v)))
+        sampled_first_switch(
+            parts,
+            |th| self.value_at(m, ev, step, th),
+            (g0, g1),
+            |before, after| self.locate_in(m, ev, step, before, after),
+        )
     }
 
     /// Whether `ev` ends the contact: the disc separates or the last submerged corner leaves
@@ -228,9 +186,70 @@ impl Reference<'_> {
     }
 }
 
+/// The first switch of an event inside a step from its function `value` (of the fraction of
+/// the step) sampled at `parts` equal parts (`g0` its value at the start, computed only when
+/// needed; `g1` at the end): the first positive sample's, or, where every sample is negative,
+/// one that fires and clears again between three samples around a local maximum (see
+/// [`grazes`]): Brent's search for that maximum on the dense output. `locate` finds the root
+/// between a point where the function has not fired (its value, if known) and one where it
+/// has. The plate's and the pair's adaptive loops share it (a stick or slip phase shorter
+/// than a step, inside it).
+pub(crate) fn sampled_first_switch(
+    parts: usize,
+    value: impl Fn(f64) -> f64,
+    (g0, g1): (impl Fn() -> f64, f64),
+    locate: impl Fn((f64, Option<f64>), (f64, f64)) -> f64,
+) -> Option<f64> {
+    let w = 1.0 / parts as f64;
+    let mut g = [0.0; MAX_PARTS + 1];
+    for k in 1..=parts {
+        g[k] = if k == parts { g1 } else { value(k as f64 * w) };
+        if g[k] > 0.0 {
+            let before = if k == 1 { g0() } else { g[k - 1] };
+            let before = ((k - 1) as f64 * w, Some(before));
+            return Some(locate(before, (k as f64 * w, g[k])));
+        }
+    }
+    // A peak between the start and the first sample shows only with the start's value:
+    // the function falls from the first sample to the second.
+    let first = if g[1] >= g[2] {
+        g[0] = g0();
+        0
+    } else {
+        1
+    };
+    let k = first + grazes(&g[first..=parts])?;
+    let positive = std::cell::Cell::new(None);
+    let (lo, hi) = ((k - 1) as f64 * w, (k + 1) as f64 * w);
+    roots::peak(
+        |th| {
+            let v = value(th);
+            if v > 0.0 && positive.get().is_none() {
+                positive.set(Some((th, v)));
+            }
+            v
+        },
+        (lo, hi),
+        g[k],
+        1e-6 * w,
+    );
+    let (th, v) = positive.get()?;
+    // The root before the positive point (the samples left of it are negative).
+    let from = if th < k as f64 * w {
+        (lo, g[k - 1])
+    } else {
+        (k as f64 * w, g[k])
+    };
+    Some(locate((from.0, Some(from.1)), (th, v)))
+}
+
 /// How many times its variation over a step's stages the stick -> slip event function must
 /// stay below zero for the step to skip its samples (see `Reference::stays_stuck`).
 const STUCK_SPANS: f64 = 2.0;
+
+/// Into how many parts a step is cut to look for a stick or slip phase inside it (see
+/// [`interior_samples`]), on the plate and on a pair.
+pub(crate) const TANGENTIAL_PARTS: usize = 3;
 
 /// The most parts [`interior_samples`] cuts a step into.
 const MAX_PARTS: usize = 8;
@@ -279,7 +298,7 @@ fn grazes(g: &[f64]) -> Option<usize> {
 fn interior_samples(ev: Event) -> Option<usize> {
     match ev {
         Event::EnterLeft | Event::EnterRight | Event::Touch => Some(8),
-        Event::ToStick | Event::ToSlip => Some(3),
+        Event::ToStick | Event::ToSlip => Some(TANGENTIAL_PARTS),
         _ => None,
     }
 }
