@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
 import sys
@@ -69,9 +68,8 @@ def test_calibrate_bad_data_row_is_named(tmp_path, capsys):
 def test_ctrl_c_stops_after_the_batch_and_writes_the_unconverged_chain(tmp_path):
     path = _setup(tmp_path, "min_ess = 1e9\nmax_iter = 1000000")  # never converges on its own
     out = tmp_path / "out"
-    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
     proc = subprocess.Popen([sys.executable, "-u", "-m", "restitution", "calibrate", str(path), "--out", str(out),
-                             "--progress"], stderr=subprocess.PIPE, stdout=subprocess.PIPE, env=env)
+                             "--progress"], stderr=subprocess.PIPE, stdout=subprocess.PIPE)
     assert proc.stderr is not None
     proc.stderr.read(1)  # the progress line: the sampler is running
     proc.send_signal(signal.SIGINT)
