@@ -21,6 +21,7 @@ True
 
 from __future__ import annotations
 
+import abc
 import functools
 import math
 import numbers
@@ -157,18 +158,18 @@ def _bound(owner: str, name: str, value: Any) -> float | None:
     return None if value is None else _finite(owner, name, value)
 
 
-class Distribution:
+class Distribution(abc.ABC):
     """What every distribution offers: draws from a seed, its CDF and inverse CDF, a dict form."""
 
     kind: ClassVar[str]
 
+    @abc.abstractmethod
     def ppf(self, u: np.ndarray) -> np.ndarray:
         """The inverse CDF at ``u`` in (0, 1) (truncation included)."""
-        raise NotImplementedError
 
+    @abc.abstractmethod
     def cdf(self, x: np.ndarray) -> np.ndarray:
         """The CDF at ``x`` (truncation included)."""
-        raise NotImplementedError
 
     def logpdf(self, x: np.ndarray) -> np.ndarray:
         """The log density at ``x`` (truncation included; -inf outside the support): the prior
