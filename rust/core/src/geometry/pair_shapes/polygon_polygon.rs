@@ -58,11 +58,7 @@ pub(super) fn polygon_patch(
             return None;
         }
         let chord = farthest_crossings(out)?;
-        let mut p = patch_of(out, chord, (pa, pb), at, extras, points)?;
-        if extras == Extras::Springs {
-            p.springs = corner_springs(pa, pb, points, at);
-        }
-        Some(p)
+        patch_of(out, chord, (pa, pb), at, (extras, Some((pa, pb))), points)
     })
 }
 
@@ -89,18 +85,22 @@ pub(super) fn placed_patch(
             return None;
         }
         let chord = farthest_crossings(out)?;
-        patch_of(out, chord, (pa, pb), at, Extras::Push, points)
+        patch_of(out, chord, (pa, pb), at, (Extras::Push, None), points)
     })
 }
 
+/// Every corner of both polygons, placed (what the linear law's springs read).
+type AllCorners<'a> = Option<(&'a [[f64; 2]], &'a [[f64; 2]])>;
+
 /// The patch of the overlap `out` (the clip's vertices) with the chord between its vertices
-/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`.
+/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`; the springs need
+/// every corner placed (`all`).
 fn patch_of<R: Ring + ?Sized>(
     out: &[ClipVertex],
     (k0, k1): (usize, usize),
     (pa, pb): (&R, &R),
     at: [f64; 2],
-    extras: Extras,
+    (extras, all): (Extras, AllCorners),
     points: &mut Vec<([f64; 2], bool)>,
 ) -> Option<ShapePatch> {
     let (c0, c1) = (out[k0], out[k1]);
@@ -117,8 +117,11 @@ fn patch_of<R: Ring + ?Sized>(
     let across = shared_edge_normal(&c0, &c1, pa, pb);
     let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
     match extras {
-        // Added by the caller, who holds every corner placed.
-        Extras::Springs => {}
+        Extras::Springs => {
+            if let Some((sa, sb)) = all {
+                p.springs = corner_springs(sa, sb, points, at);
+            }
+        }
         Extras::Push => {
             let caps = caps_of(out, (k0, k1));
             let crossing = |v: &ClipVertex| {
@@ -183,7 +186,7 @@ pub(super) fn held_patch(
             after,
         }));
         let [k0, k1] = held.chord;
-        patch_of(out, (k0, k1), (pa, pb), at, Extras::Push, points)
+        patch_of(out, (k0, k1), (pa, pb), at, (Extras::Push, None), points)
     })
 }
 
