@@ -18,8 +18,9 @@
 //! the direction of C0, and B's normals turn monotonically, so the edges tested are one run
 //! around B's corner farthest along C0 (for a regular polygon, exactly the edges whose lines
 //! come within R0 of C0). Where the window cannot be trusted (A wholly inside the first line,
-//! a corner next to the run within round-off of it, a run of half of B's edges or more), the
-//! full clip runs.
+//! a corner next to the run within round-off of it), the full clip runs; where B's edges cannot
+//! be ruled out (its inscribed disc too small against the first clip, or half of its edges
+//! near), the clip goes on through every edge of B from the same first clip, as the full one.
 
 use super::convex_clip::{
     along_q, clip_by_edge, clip_convex, edge, facing_edge_at, first_clip_run, set_exact_positions,
@@ -95,7 +96,8 @@ struct Hints {
 
 #[cfg(test)]
 thread_local! {
-    /// How often the windowed clip fell back to the full clip (for the tests).
+    /// How often the windowed clip fell back to the full clip or to every edge of B (for the
+    /// tests).
     static FALLBACKS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
 }
 
@@ -149,6 +151,10 @@ fn clip_in_window(
     out: &mut Vec<ClipVertex>,
     scratch: &mut WindowScratch,
 ) -> bool {
+    // Centres at one point: every corner of B is as far along q (the full scan keeps corner 0).
+    if q == [0.0, 0.0] {
+        return fallback(a, b, q, out, &mut scratch.next);
+    }
     // B's corner farthest along q (the lowest index of equals, as the full scan keeps the
     // first), and the facing edge there.
     let kb = climb(
@@ -166,11 +172,20 @@ fn clip_in_window(
         return false;
     }
     let mut bound = Bound::of(out);
-    let Some(run) = edges_near(b, bound, &mut scratch.hints.towards) else {
-        return fallback(a, b, q, out, &mut scratch.next);
+    // Where B's edges cannot be ruled out, every edge after the first, as the full clip
+    // goes on from the same first clip.
+    let m = b.count();
+    let (run, all) = match edges_near(b, bound, &mut scratch.hints.towards) {
+        Some(run) => (run, 0..0),
+        None => {
+            #[cfg(test)]
+            FALLBACKS.with(|f| f.set(f.get() + 1));
+            ((0, 0), 1..m)
+        }
     };
+    let every = all.map(move |k| ((j0 + k) % m) as u32);
     let next = &mut scratch.next;
-    for j in in_clip_order(run, j0, b.count()) {
+    for j in in_clip_order(run, j0, m).chain(every) {
         if clip_by_edge(out, next, edge(b, j), j, bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
@@ -432,10 +447,11 @@ mod tests {
             } else {
                 (rng(s) * 6.3, rng(s) * 6.3, rng(s) * 6.3)
             };
-            let depth = if rng(s) < 0.7 {
-                1e-6 + 0.1 * rng(s)
-            } else {
-                rng(s)
+            let depth = match case % 97 {
+                // Centres at one point.
+                0 => 1.0,
+                _ if rng(s) < 0.7 => 1e-6 + 0.1 * rng(s),
+                _ => rng(s),
             };
             let d = reach * (1.0 - depth);
             let q = [d * ang.cos(), d * ang.sin()];
