@@ -7,6 +7,27 @@
 //! the crossings of the two boundaries, with the edges they lie on, are known: the contact's
 //! chord and the potential's derivatives read them (`pair_shapes/potential.rs`).
 
+/// A convex polygon's corners, counter-clockwise, read by index: placed vertices in a slice,
+/// or a body's corners placed only when read (`convex_window::PlacedPolygon`), so that a clip
+/// that visits a few corners places only those.
+pub trait Ring {
+    /// The number of corners.
+    fn count(&self) -> usize;
+    /// Corner `i` (0 <= i < count), placed.
+    fn corner(&self, i: usize) -> [f64; 2];
+}
+
+impl Ring for [[f64; 2]] {
+    #[inline(always)]
+    fn count(&self) -> usize {
+        self.len()
+    }
+    #[inline(always)]
+    fn corner(&self, i: usize) -> [f64; 2] {
+        self[i]
+    }
+}
+
 /// The line of one polygon's edge: edge i runs from vertex i to vertex i + 1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum EdgeLine {
@@ -76,14 +97,15 @@ pub fn edge_crossing(
 
 /// The edge `k` of the counter-clockwise polygon `v` as its two ends.
 #[inline(always)]
-fn edge(v: &[[f64; 2]], k: u32) -> [[f64; 2]; 2] {
+pub(crate) fn edge<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
     let k = k as usize;
-    [v[k], v[(k + 1) % v.len()]]
+    let next = if k + 1 == v.count() { 0 } else { k + 1 };
+    [v.corner(k), v.corner(next)]
 }
 
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
 /// `false` when every vertex lies inside (nothing to do: `next` untouched).
-fn clip_by_edge(
+pub(crate) fn clip_by_edge(
     out: &[ClipVertex],
     next: &mut Vec<ClipVertex>,
     bj: [[f64; 2]; 2],
@@ -132,13 +154,13 @@ fn clip_by_edge(
 
 /// A circle around a polygon: its vertices' mean and the largest squared distance from it.
 #[derive(Debug, Clone, Copy)]
-struct Bound {
-    centre: [f64; 2],
-    radius2: f64,
+pub(crate) struct Bound {
+    pub(crate) centre: [f64; 2],
+    pub(crate) radius2: f64,
 }
 
 impl Bound {
-    fn of(v: &[ClipVertex]) -> Self {
+    pub(crate) fn of(v: &[ClipVertex]) -> Self {
         let k = v.len() as f64;
         let (sx, sy) = v
             .iter()
@@ -160,20 +182,33 @@ impl Bound {
 /// point `q`: of the two edges at B's farthest vertex along q, the one whose outward normal is
 /// nearer q's direction. The clip starts there, so that its first cut leaves only A's corners
 /// near the contact.
-fn facing_edge(b: &[[f64; 2]], q: [f64; 2]) -> usize {
-    let m = b.len();
+fn facing_edge<R: Ring + ?Sized>(b: &R, q: [f64; 2]) -> usize {
     let mut k = 0;
     let mut best = f64::NEG_INFINITY;
-    for (i, v) in b.iter().enumerate() {
-        let s = v[0] * q[0] + v[1] * q[1];
+    for i in 0..b.count() {
+        let s = along_q(b.corner(i), q);
         if s > best {
             best = s;
             k = i;
         }
     }
+    facing_edge_at(b, k, q)
+}
+
+/// How far corner `v` lies along `q` (the measure [`facing_edge`] maximises).
+#[inline(always)]
+pub(crate) fn along_q(v: [f64; 2], q: [f64; 2]) -> f64 {
+    v[0] * q[0] + v[1] * q[1]
+}
+
+/// Of the two edges at B's corner `k` (the farthest along q), the one whose outward normal is
+/// nearer q's direction.
+pub(crate) fn facing_edge_at<R: Ring + ?Sized>(b: &R, k: usize, q: [f64; 2]) -> usize {
+    let m = b.count();
     let prev = (k + m - 1) % m;
     let along = |j: usize| {
-        let e = sub(b[(j + 1) % m], b[j]);
+        let [b0, b1] = edge(b, j as u32);
+        let e = sub(b1, b0);
         // The outward normal (e_y, -e_x) against q, per unit edge length.
         (e[1] * q[0] - e[0] * q[1]) / (e[0] * e[0] + e[1] * e[1]).sqrt()
     };
@@ -188,14 +223,14 @@ fn facing_edge(b: &[[f64; 2]], q: [f64; 2]) -> usize {
 /// into `out` (`next` is scratch space); `false` when they do not overlap. Each vertex's
 /// position is taken from the lines it lies on: a corner of A or B exactly, a crossing by
 /// [`edge_crossing`].
-pub fn clip_convex(
-    a: &[[f64; 2]],
-    b: &[[f64; 2]],
+pub fn clip_convex<R: Ring + ?Sized>(
+    a: &R,
+    b: &R,
     q: [f64; 2],
     out: &mut Vec<ClipVertex>,
     next: &mut Vec<ClipVertex>,
 ) -> bool {
-    let m = b.len();
+    let m = b.count();
     let j0 = facing_edge(b, q);
     first_clip(a, edge(b, j0 as u32), j0 as u32, out);
     if out.len() < 3 {
@@ -213,29 +248,52 @@ pub fn clip_convex(
             bound = Bound::of(out);
         }
     }
+    set_exact_positions(out, a, b);
+    true
+}
+
+/// Each vertex of the intersection `out` of `a` and `b` at its exact position
+/// ([`exact_position`]).
+pub(crate) fn set_exact_positions<R: Ring + ?Sized>(out: &mut [ClipVertex], a: &R, b: &R) {
     for v in out.iter_mut() {
         v.p = exact_position(v, a, b);
     }
-    true
 }
 
 /// A clipped by the inner half-plane of B's edge `j` into `out`, A's corners read in place
 /// (the first clip, where A is whole: no copy of it is made).
-fn first_clip(a: &[[f64; 2]], bj: [[f64; 2]; 2], j: u32, out: &mut Vec<ClipVertex>) {
+fn first_clip<R: Ring + ?Sized>(a: &R, bj: [[f64; 2]; 2], j: u32, out: &mut Vec<ClipVertex>) {
     out.clear();
-    let n = a.len();
+    let n = a.count();
+    first_clip_run(a, bj, j, n - 1, 0..n, out);
+}
+
+/// The first clip's vertices for A's corners `run` (consecutive, `prev` the corner before the
+/// first), pushed onto `out` in that order: each corner inside B's edge line `j`, and where the
+/// edge arriving at a corner crosses that line, the crossing before it. Over every corner from
+/// 0 it is the whole first clip; over a run that starts and ends outside, the whole clip too,
+/// in another cyclic order (`convex_window.rs`).
+pub(crate) fn first_clip_run<R: Ring + ?Sized>(
+    a: &R,
+    bj: [[f64; 2]; 2],
+    j: u32,
+    mut prev: usize,
+    run: impl Iterator<Item = usize>,
+    out: &mut Vec<ClipVertex>,
+) {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
-    let mut prev = n - 1;
-    let mut s_prev = side(a[prev]);
-    for i in 0..n {
-        let s = side(a[i]);
+    let mut a_prev = a.corner(prev);
+    let mut s_prev = side(a_prev);
+    for i in run {
+        let ai = a.corner(i);
+        let s = side(ai);
         if (s_prev >= 0.0) != (s >= 0.0) {
             // The edge prev -> i (A's edge `prev`) crosses B's line j.
             let t = s_prev / (s_prev - s);
             let p = [
-                a[prev][0] + t * (a[i][0] - a[prev][0]),
-                a[prev][1] + t * (a[i][1] - a[prev][1]),
+                a_prev[0] + t * (ai[0] - a_prev[0]),
+                a_prev[1] + t * (ai[1] - a_prev[1]),
             ];
             let (before, after) = if s_prev >= 0.0 {
                 (EdgeLine::A(prev as u32), EdgeLine::B(j))
@@ -246,23 +304,28 @@ fn first_clip(a: &[[f64; 2]], bj: [[f64; 2]; 2], j: u32, out: &mut Vec<ClipVerte
         }
         if s >= 0.0 {
             out.push(ClipVertex {
-                p: a[i],
+                p: ai,
                 before: EdgeLine::A(prev as u32),
                 after: EdgeLine::A(i as u32),
             });
         }
         prev = i;
+        a_prev = ai;
         s_prev = s;
     }
 }
 
 /// A vertex's position from the two lines it lies on: a corner where both are one polygon's
 /// consecutive edges, a crossing where they are one of each.
-fn exact_position(v: &ClipVertex, a: &[[f64; 2]], b: &[[f64; 2]]) -> [f64; 2] {
+fn exact_position<R: Ring + ?Sized>(v: &ClipVertex, a: &R, b: &R) -> [f64; 2] {
     let next = |k: u32, len: usize| (k as usize + 1) % len;
     match (v.before, v.after) {
-        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == next(i, a.len()) => a[k as usize],
-        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == next(j, b.len()) => b[k as usize],
+        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == next(i, a.count()) => {
+            a.corner(k as usize)
+        }
+        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == next(j, b.count()) => {
+            b.corner(k as usize)
+        }
         (EdgeLine::A(i), EdgeLine::B(j)) | (EdgeLine::B(j), EdgeLine::A(i)) => {
             edge_crossing(edge(a, i), edge(b, j), v.p)
         }
@@ -310,7 +373,7 @@ mod tests {
             let q = [d * ang.cos(), d * ang.sin()];
             let a = regular(r1, n, rnd() * 6.3, q);
             let b = regular(r2, m, rnd() * 6.3, [0.0, 0.0]);
-            let ours = clip_convex(&a, &b, q, &mut out, &mut next);
+            let ours = clip_convex(&a[..], &b[..], q, &mut out, &mut next);
             let theirs = crate::geometry::parry::polygon_pair_overlap(
                 a.iter().copied(),
                 b.iter().copied(),
@@ -327,7 +390,7 @@ mod tests {
                     assert!(crossings.len() >= 2 && crossings.len() % 2 == 0);
                     for v in out.iter().filter(|v| v.crossing().is_some()) {
                         let (i, j) = v.crossing().unwrap();
-                        for (poly, k) in [(&a, i), (&b, j)] {
+                        for (poly, k) in [(&a[..], i), (&b[..], j)] {
                             let [p0, p1] = edge(poly, k);
                             let e = sub(p1, p0);
                             let off = cross(e, sub(v.p, p0)) / e[0].hypot(e[1]);

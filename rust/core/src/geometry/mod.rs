@@ -4,6 +4,7 @@
 
 pub mod chain;
 pub mod convex_clip;
+pub mod convex_window;
 pub mod disc;
 pub mod overlap;
 pub mod pair;

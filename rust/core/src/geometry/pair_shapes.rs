@@ -13,12 +13,15 @@
 //! p_a, p_b (ordered along t = (n_y, -n_x)); b_1 + b_2 = l (q x n), so a rigid turn of the
 //! pair leaves the area unchanged.
 
+use super::convex_window::{PlacedPolygon, FEW_CORNERS};
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
 use disc_polygon::{disc_polygon, DiscRole};
 use gap::{distance_to_polygon, inside, polygons_overlap, vertices_distance};
-use polygon_polygon::{held_overlap, held_overlap_value, held_patch, polygon_patch, Extras};
+use polygon_polygon::{
+    held_overlap, held_overlap_value, held_patch, placed_patch, polygon_patch, Extras,
+};
 use springs::{
     disc_spring, held_corner_springs, held_springs_value, parted_disc_patch, parted_patch,
     springs_of_held,
@@ -136,6 +139,24 @@ fn with_placed<R>(
     })
 }
 
+/// The particle `a` at lanes `q` and the partner `b` at the origin, each corner placed only
+/// where the contact reads it (the area law's windowed clip).
+fn placed_pair<'a>(
+    (a, b): (&'a Polygon, &'a Polygon),
+    q: &[f64; 4],
+) -> (PlacedPolygon<'a>, PlacedPolygon<'a>) {
+    (
+        PlacedPolygon::new(a, [q[0], q[1]], q[2]),
+        PlacedPolygon::new(b, [0.0, 0.0], q[3]),
+    )
+}
+
+/// Whether two polygons have so few corners that they are clipped whole
+/// ([`FEW_CORNERS`]).
+fn few_corners((a, b): (&Polygon, &Polygon)) -> bool {
+    a.vertices().len() + b.vertices().len() <= FEW_CORNERS
+}
+
 impl<'a> ShapePair<'a> {
     /// The pair of `particle` and `partner`; `None` when neither has corners (two discs or
     /// spheres: [`crate::geometry::pair`]).
@@ -164,23 +185,24 @@ impl<'a> ShapePair<'a> {
     pub fn patch(&self, q: &[f64; 4]) -> Option<ShapePatch> {
         let at = [q[0], q[1]];
         match self.polygons() {
-            Some(ab) => with_placed(ab, q, |pa, pb| {
-                polygon_patch(pa, pb, at, self.reach(), self.extras())
+            // The linear law's springs read every corner, and few corners are clipped whole
+            // faster placed all at once (the same result as the window's, bit for bit).
+            Some(ab) if self.springs || few_corners(ab) => with_placed(ab, q, |pa, pb| {
+                let extras = if self.springs {
+                    Extras::Springs
+                } else {
+                    Extras::Push
+                };
+                polygon_patch(pa, pb, at, self.reach(), extras)
             }),
+            Some(ab) => {
+                let (pa, pb) = placed_pair(ab, q);
+                placed_patch(&pa, &pb, at, self.reach())
+            }
             None => {
                 let (c, r, placed, sign) = self.disc_and_polygon(q)?;
                 self.disc_with_polygon(c, r, placed, at, sign)
             }
-        }
-    }
-
-    /// What the overlap carries for the pair's law: the linear law's springs, or the area
-    /// law's push.
-    fn extras(&self) -> Extras {
-        if self.springs {
-            Extras::Springs
-        } else {
-            Extras::Push
         }
     }
 
@@ -363,7 +385,10 @@ impl PairGeometry for ShapePair<'_> {
             Some(ab) if self.springs => with_placed(ab, q, |pa, pb| {
                 held_corner_springs(pa, pb, [q[0], q[1]], self.circumradii())
             }),
-            Some(ab) => with_placed(ab, q, |pa, pb| held_overlap(pa, pb, [q[0], q[1]])),
+            Some(ab) => {
+                let (pa, pb) = placed_pair(ab, q);
+                held_overlap(&pa, &pb, [q[0], q[1]])
+            }
             None => HeldSprings::default(),
         }
     }
@@ -374,7 +399,8 @@ impl PairGeometry for ShapePair<'_> {
             // to the located switch where a crossing passes a corner).
             return match self.polygons() {
                 Some(ab) if !held.overlap.is_empty() => {
-                    let p = with_placed(ab, q, |pa, pb| held_patch(pa, pb, [q[0], q[1]], held))?;
+                    let (pa, pb) = placed_pair(ab, q);
+                    let p = held_patch(&pa, &pb, [q[0], q[1]], held)?;
                     Some(self.frame_of(p, q))
                 }
                 _ => self.frame(q),
@@ -407,7 +433,8 @@ impl PairGeometry for ShapePair<'_> {
                 held_springs_value(pa, pb, [q[0], q[1]], self.circumradii(), held)
             }),
             Some(ab) if !held.overlap.is_empty() => {
-                with_placed(ab, q, |pa, pb| held_overlap_value(pa, pb, held))
+                let (pa, pb) = placed_pair(ab, q);
+                held_overlap_value(&pa, &pb, held)
             }
             _ => f64::NEG_INFINITY,
         }

@@ -27,6 +27,10 @@ pub struct Polygon {
     /// The largest world x of the lowest vertex over all orientations (m): see
     /// [`Polygon::lowest_arm`].
     pub(crate) lowest_arm: f64,
+    /// The smallest distance from the centroid to an edge's line (m): the disc of this radius
+    /// about the centroid lies inside, so an edge whose line is far from a point seen from the
+    /// centroid need not be tested (`convex_window.rs`).
+    pub(crate) inradius: f64,
 }
 
 impl Polygon {
@@ -90,7 +94,14 @@ impl Polygon {
             }
             polar.push(a);
         }
+        let inradius = (0..n)
+            .map(|i| {
+                let (p, q) = (vertices[i], vertices[(i + 1) % n]);
+                cross(p, q) / (q - p).norm()
+            })
+            .fold(f64::INFINITY, f64::min);
         Polygon {
+            inradius,
             chain: ChainSums::new(&vertices),
             lowest_arm: lowest_arm(&vertices),
             vertices,

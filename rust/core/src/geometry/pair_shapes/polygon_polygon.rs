@@ -5,7 +5,8 @@
 use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::springs::corner_springs;
 use super::{assemble, sub, ShapePatch};
-use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine};
+use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine, Ring};
+use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
 use crate::geometry::pair::HeldSprings;
 use std::cell::RefCell;
 
@@ -20,11 +21,12 @@ pub(super) enum Extras {
     Push,
 }
 
-/// Reused buffers: the clip's two polygons and the overlap's points with their crossing marks.
+/// Reused buffers: the clip's polygon, the windowed clip's scratch, and the overlap's points
+/// with their crossing marks.
 #[derive(Default)]
 struct ClipScratch {
     out: Vec<ClipVertex>,
-    next: Vec<ClipVertex>,
+    window: WindowScratch,
     points: Vec<([f64; 2], bool)>,
 }
 
@@ -33,8 +35,8 @@ thread_local! {
 }
 
 /// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
-/// partner), with what `extras` asks for; `None` when apart, touching, or without two
-/// crossings (one inside the other).
+/// partner), with what `extras` asks for (the linear law's springs read every corner: all
+/// placed); `None` when apart, touching, or without two crossings (one inside the other).
 pub(super) fn polygon_patch(
     pa: &[[f64; 2]],
     pb: &[[f64; 2]],
@@ -47,23 +49,58 @@ pub(super) fn polygon_patch(
     }
     CLIP.with(|cell| {
         let mut buf = cell.borrow_mut();
-        let ClipScratch { out, next, points } = &mut *buf;
-        if !clip_convex(pa, pb, at, out, next) {
+        let ClipScratch {
+            out,
+            window,
+            points,
+        } = &mut *buf;
+        if !clip_convex(pa, pb, at, out, &mut window.next) {
             return None;
         }
         let chord = farthest_crossings(out)?;
-        patch_of(out, chord, (pa, pb), at, extras, points)
+        patch_of(out, chord, (pa, pb), at, (extras, Some((pa, pb))), points)
     })
 }
 
+/// The area law's overlap of the polygons `pa` (the particle, its centre at `at`) and `pb`,
+/// with its potential and push, reading only the corners near the contact (the windowed
+/// clip, `convex_window.rs`); `None` as for [`polygon_patch`].
+pub(super) fn placed_patch(
+    pa: &PlacedPolygon,
+    pb: &PlacedPolygon,
+    at: [f64; 2],
+    reach: f64,
+) -> Option<ShapePatch> {
+    if at[0] * at[0] + at[1] * at[1] >= reach * reach {
+        return None;
+    }
+    CLIP.with(|cell| {
+        let mut buf = cell.borrow_mut();
+        let ClipScratch {
+            out,
+            window,
+            points,
+        } = &mut *buf;
+        if !clip_windowed(pa, pb, at, out, window) {
+            return None;
+        }
+        let chord = farthest_crossings(out)?;
+        patch_of(out, chord, (pa, pb), at, (Extras::Push, None), points)
+    })
+}
+
+/// Every corner of both polygons, placed (what the linear law's springs read).
+type AllCorners<'a> = Option<(&'a [[f64; 2]], &'a [[f64; 2]])>;
+
 /// The patch of the overlap `out` (the clip's vertices) with the chord between its vertices
-/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`.
-fn patch_of(
+/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`; the springs need
+/// every corner placed (`all`).
+fn patch_of<R: Ring + ?Sized>(
     out: &[ClipVertex],
     (k0, k1): (usize, usize),
-    (pa, pb): (&[[f64; 2]], &[[f64; 2]]),
+    (pa, pb): (&R, &R),
     at: [f64; 2],
-    extras: Extras,
+    (extras, all): (Extras, AllCorners),
     points: &mut Vec<([f64; 2], bool)>,
 ) -> Option<ShapePatch> {
     let (c0, c1) = (out[k0], out[k1]);
@@ -80,7 +117,11 @@ fn patch_of(
     let across = shared_edge_normal(&c0, &c1, pa, pb);
     let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
     match extras {
-        Extras::Springs => p.springs = corner_springs(pa, pb, points, at),
+        Extras::Springs => {
+            if let Some((sa, sb)) = all {
+                p.springs = corner_springs(sa, sb, points, at);
+            }
+        }
         Extras::Push => {
             let caps = caps_of(out, (k0, k1));
             let crossing = |v: &ClipVertex| {
@@ -100,11 +141,11 @@ fn patch_of(
 
 /// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
 /// (docs/model.md 17.8): its vertices' edge lines and its chord; empty when apart.
-pub(super) fn held_overlap(pa: &[[f64; 2]], pb: &[[f64; 2]], at: [f64; 2]) -> HeldSprings {
+pub(super) fn held_overlap(pa: &PlacedPolygon, pb: &PlacedPolygon, at: [f64; 2]) -> HeldSprings {
     CLIP.with(|cell| {
         let mut buf = cell.borrow_mut();
-        let ClipScratch { out, next, .. } = &mut *buf;
-        match clip_convex(pa, pb, at, out, next)
+        let ClipScratch { out, window, .. } = &mut *buf;
+        match clip_windowed(pa, pb, at, out, window)
             .then(|| farthest_crossings(out))
             .flatten()
         {
@@ -123,15 +164,19 @@ pub(super) fn held_overlap(pa: &[[f64; 2]], pb: &[[f64; 2]], at: [f64; 2]) -> He
 /// switch is located by [`held_overlap_value`]); `None` when the bodies do not overlap, or the
 /// continued overlap has no area.
 pub(super) fn held_patch(
-    pa: &[[f64; 2]],
-    pb: &[[f64; 2]],
+    pa: &PlacedPolygon,
+    pb: &PlacedPolygon,
     at: [f64; 2],
     held: &HeldSprings,
 ) -> Option<ShapePatch> {
     CLIP.with(|cell| {
         let mut buf = cell.borrow_mut();
-        let ClipScratch { out, next, points } = &mut *buf;
-        if !clip_convex(pa, pb, at, out, next) {
+        let ClipScratch {
+            out,
+            window,
+            points,
+        } = &mut *buf;
+        if !clip_windowed(pa, pb, at, out, window) {
             return None;
         }
         out.clear();
@@ -141,24 +186,24 @@ pub(super) fn held_patch(
             after,
         }));
         let [k0, k1] = held.chord;
-        patch_of(out, (k0, k1), (pa, pb), at, Extras::Push, points)
+        patch_of(out, (k0, k1), (pa, pb), at, (Extras::Push, None), points)
     })
 }
 
 /// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
 /// crossing of the two lines (interpolated along the first's edge, from its end nearer the
 /// other line).
-fn meet(l1: EdgeLine, l2: EdgeLine, pa: &[[f64; 2]], pb: &[[f64; 2]]) -> [f64; 2] {
+fn meet<R: Ring + ?Sized>(l1: EdgeLine, l2: EdgeLine, pa: &R, pb: &R) -> [f64; 2] {
     let line = |l: EdgeLine| match l {
         EdgeLine::A(i) => ends(pa, i),
         EdgeLine::B(j) => ends(pb, j),
     };
     match (l1, l2) {
-        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == (i as usize + 1) % pa.len() => {
-            pa[k as usize]
+        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == (i as usize + 1) % pa.count() => {
+            pa.corner(k as usize)
         }
-        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == (j as usize + 1) % pb.len() => {
-            pb[k as usize]
+        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == (j as usize + 1) % pb.count() => {
+            pb.corner(k as usize)
         }
         // Along the particle's edge, as the clip takes it (`convex_clip::exact_position`).
         (EdgeLine::B(_), EdgeLine::A(_)) => edge_crossing(line(l2), line(l1), line(l2)[0]),
@@ -167,16 +212,15 @@ fn meet(l1: EdgeLine, l2: EdgeLine, pa: &[[f64; 2]], pb: &[[f64; 2]]) -> [f64; 2
 }
 
 /// The two ends of edge `k` of the polygon `v`.
-fn ends(v: &[[f64; 2]], k: u32) -> [[f64; 2]; 2] {
-    let k = k as usize;
-    [v[k], v[(k + 1) % v.len()]]
+fn ends<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
+    crate::geometry::convex_clip::edge(v, k)
 }
 
 /// How far the held overlap's crossings have gone past the ends of their edges (> 0: a
 /// crossing has passed a corner, the held overlap is no longer the bodies' and the force
 /// turns there), in units of the edges' lengths, less a margin of 1e-9 so that an overlap held
 /// at a switch does not fire again on round-off.
-pub(super) fn held_overlap_value(pa: &[[f64; 2]], pb: &[[f64; 2]], held: &HeldSprings) -> f64 {
+pub(super) fn held_overlap_value<R: Ring + ?Sized>(pa: &R, pb: &R, held: &HeldSprings) -> f64 {
     let mut value = f64::NEG_INFINITY;
     for &(before, after) in &held.overlap {
         let (i, j) = match (before, after) {
@@ -220,20 +264,20 @@ fn farthest_crossings(out: &[ClipVertex]) -> Option<(usize, usize)> {
 }
 
 /// The outward normal (unnormalised) of edge `k` of the counter-clockwise polygon `v`.
-fn edge_normal(v: &[[f64; 2]], k: u32) -> [f64; 2] {
-    let k = k as usize;
-    let e = sub(v[(k + 1) % v.len()], v[k]);
+fn edge_normal<R: Ring + ?Sized>(v: &R, k: u32) -> [f64; 2] {
+    let [v0, v1] = ends(v, k);
+    let e = sub(v1, v0);
     [e[1], -e[0]]
 }
 
 /// Where both crossings lie on one edge of either polygon (a corner pressed into an edge: the
 /// chord lies on that edge), that edge's normal: exact, where the chord's own direction carries
 /// the round-off of its ends over its length (1e-3 at a chord of 1e-14 m).
-fn shared_edge_normal(
+fn shared_edge_normal<R: Ring + ?Sized>(
     c0: &ClipVertex,
     c1: &ClipVertex,
-    pa: &[[f64; 2]],
-    pb: &[[f64; 2]],
+    pa: &R,
+    pb: &R,
 ) -> Option<[f64; 2]> {
     let ((i0, j0), (i1, j1)) = (c0.crossing()?, c1.crossing()?);
     if i0 == i1 {
