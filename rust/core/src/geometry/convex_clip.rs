@@ -59,13 +59,14 @@ impl ClipVertex {
     }
 }
 
+/// 2D cross product.
 #[inline(always)]
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(crate) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[0] * b[1] - a[1] * b[0]
 }
 
 #[inline(always)]
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+pub(crate) fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
     [a[0] - b[0], a[1] - b[1]]
 }
 
@@ -236,10 +237,23 @@ pub fn clip_convex<R: Ring + ?Sized>(
     if out.len() < 3 {
         return false;
     }
+    let rest = (1..m).map(|k| ((j0 + k) % m) as u32);
+    clip_through(a, b, rest, out, next)
+}
+
+/// Clips the first clip `out` by B's edges `edges` in turn (`next` is scratch space), then
+/// sets each vertex at its exact position; `false` where the overlap vanishes. The full clip
+/// and the windowed one (`convex_window.rs`) go on from their first clip by this one loop.
+pub(crate) fn clip_through<R: Ring + ?Sized>(
+    a: &R,
+    b: &R,
+    edges: impl Iterator<Item = u32>,
+    out: &mut Vec<ClipVertex>,
+    next: &mut Vec<ClipVertex>,
+) -> bool {
     let mut bound = Bound::of(out);
-    for k in 1..m {
-        let j = (j0 + k) % m;
-        if clip_by_edge(out, next, edge(b, j as u32), j as u32, bound) {
+    for j in edges {
+        if clip_by_edge(out, next, edge(b, j), j, bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();

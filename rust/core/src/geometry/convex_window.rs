@@ -23,8 +23,8 @@
 //! near), the clip goes on through every edge of B from the same first clip, as the full one.
 
 use super::convex_clip::{
-    along_q, clip_by_edge, clip_convex, edge, facing_edge_at, first_clip_run, set_exact_positions,
-    Bound, ClipVertex, Ring,
+    along_q, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, Bound, ClipVertex,
+    Ring,
 };
 use super::polygon::Polygon;
 use crate::numerics::trig::sin_cos;
@@ -171,7 +171,7 @@ fn clip_in_window(
     if out.len() < 3 {
         return false;
     }
-    let mut bound = Bound::of(out);
+    let bound = Bound::of(out);
     // Where B's edges cannot be ruled out, every edge after the first, as the full clip
     // goes on from the same first clip.
     let m = b.count();
@@ -184,19 +184,13 @@ fn clip_in_window(
         }
     };
     let every = all.map(move |k| ((j0 + k) % m) as u32);
-    let next = &mut scratch.next;
-    for j in in_clip_order(run, j0, m).chain(every) {
-        if clip_by_edge(out, next, edge(b, j), j, bound) {
-            std::mem::swap(out, next);
-            if out.len() < 3 {
-                out.clear();
-                return false;
-            }
-            bound = Bound::of(out);
-        }
-    }
-    set_exact_positions(out, a, b);
-    true
+    clip_through(
+        a,
+        b,
+        in_clip_order(run, j0, m).chain(every),
+        out,
+        &mut scratch.next,
+    )
 }
 
 /// From corner `k`, along the boundary of `ring` while `f` of the corner grows: for a convex

@@ -13,6 +13,7 @@
 //! p_a, p_b (ordered along t = (n_y, -n_x)); b_1 + b_2 = l (q x n), so a rigid turn of the
 //! pair leaves the area unchanged.
 
+use super::convex_clip::{cross, sub};
 use super::convex_window::{PlacedPolygon, FEW_CORNERS};
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
@@ -85,17 +86,6 @@ pub struct ShapePair<'a> {
 /// The shortest chord taken for an overlap, in units of the round-off of the centres'
 /// coordinates.
 const MIN_CHORD_ULPS: f64 = 64.0;
-
-/// 2D cross product.
-#[inline(always)]
-fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
-    a[0] * b[1] - a[1] * b[0]
-}
-
-#[inline(always)]
-fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
-    [a[0] - b[0], a[1] - b[1]]
-}
 
 #[inline(always)]
 fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {

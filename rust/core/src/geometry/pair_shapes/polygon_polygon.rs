@@ -44,22 +44,12 @@ pub(super) fn polygon_patch(
     reach: f64,
     extras: Extras,
 ) -> Option<ShapePatch> {
-    if at[0] * at[0] + at[1] * at[1] >= reach * reach {
-        return None;
-    }
-    CLIP.with(|cell| {
-        let mut buf = cell.borrow_mut();
-        let ClipScratch {
-            out,
-            window,
-            points,
-        } = &mut *buf;
-        if !clip_convex(pa, pb, at, out, &mut window.next) {
-            return None;
-        }
-        let chord = farthest_crossings(out)?;
-        patch_of(out, chord, (pa, pb), at, (extras, Some((pa, pb))), points)
-    })
+    clipped_patch(
+        at,
+        reach,
+        |out, window| clip_convex(pa, pb, at, out, &mut window.next),
+        |out, chord, points| patch_of(out, chord, (pa, pb), at, (extras, Some((pa, pb))), points),
+    )
 }
 
 /// The area law's overlap of the polygons `pa` (the particle, its centre at `at`) and `pb`,
@@ -71,6 +61,24 @@ pub(super) fn placed_patch(
     at: [f64; 2],
     reach: f64,
 ) -> Option<ShapePatch> {
+    clipped_patch(
+        at,
+        reach,
+        |out, window| clip_windowed(pa, pb, at, out, window),
+        |out, chord, points| patch_of(out, chord, (pa, pb), at, (Extras::Push, None), points),
+    )
+}
+
+/// The patch of two polygons whose centres are `at` apart, within `reach`: `clip` fills the
+/// clip's vertices in the thread's scratch space (`false`: apart), `patch` makes the patch
+/// from them and the chord between their farthest crossings. One body for the full and the
+/// windowed clip.
+fn clipped_patch(
+    at: [f64; 2],
+    reach: f64,
+    clip: impl FnOnce(&mut Vec<ClipVertex>, &mut WindowScratch) -> bool,
+    patch: impl FnOnce(&[ClipVertex], (usize, usize), &mut Vec<([f64; 2], bool)>) -> Option<ShapePatch>,
+) -> Option<ShapePatch> {
     if at[0] * at[0] + at[1] * at[1] >= reach * reach {
         return None;
     }
@@ -81,11 +89,11 @@ pub(super) fn placed_patch(
             window,
             points,
         } = &mut *buf;
-        if !clip_windowed(pa, pb, at, out, window) {
+        if !clip(out, window) {
             return None;
         }
         let chord = farthest_crossings(out)?;
-        patch_of(out, chord, (pa, pb), at, (Extras::Push, None), points)
+        patch(out, chord, points)
     })
 }
 
