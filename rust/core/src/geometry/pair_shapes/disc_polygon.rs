@@ -102,39 +102,7 @@ pub(super) fn disc_polygon(
         // The polygon's cap (its part inside the circle, closed by the chords) and the
         // disc's, with first moments about the chord's first end; the crossings' normals.
         let caps = role.push.then(|| {
-            let poly_cap = polygon_cap(points.iter().map(|p| p.0), a);
-            let disc_cap = Cap {
-                area: disc_cap.area,
-                moment: [
-                    disc_cap.moment[0] - disc_cap.area * a[0],
-                    disc_cap.moment[1] - disc_cap.area * a[1],
-                ],
-            };
-            let k = points.len();
-            let edge_normal = |i: usize| {
-                let j = edges[i];
-                let e = sub(verts[(j + 1) % verts.len()], verts[j]);
-                [e[1], -e[0]]
-            };
-            let crossing = |i: usize, p: [f64; 2]| {
-                let (disc_n, poly_n) = (p, edge_normal(i));
-                let (particle, partner) = if role.disc_is_particle {
-                    (disc_n, poly_n)
-                } else {
-                    (poly_n, disc_n)
-                };
-                Crossing {
-                    at: [p[0] + c[0], p[1] + c[1]],
-                    particle,
-                    partner,
-                }
-            };
-            let crossings = [crossing(chord_at, a), crossing((chord_at + 1) % k, b)];
-            if role.disc_is_particle {
-                ([disc_cap, poly_cap], crossings)
-            } else {
-                ([poly_cap, disc_cap], crossings)
-            }
+            caps_and_crossings(points, verts, edges, disc_cap, ([a, b], chord_at), c, role)
         });
         for apex in &apexes[..n_apex] {
             points.push((*apex, false));
@@ -155,6 +123,55 @@ pub(super) fn disc_polygon(
         }
         Some(patch)
     })
+}
+
+/// The two caps of a disc-polygon overlap, the polygon's (`points`, its part inside the
+/// circle, relative to the circle's centre `c`) and the disc's (`disc_cap`, first moment about
+/// the circle's centre), each with its first moment about the chord's first end, in the order
+/// particle, partner; and the chord's two crossings (`chord_at`: the index of its first end in
+/// `points`, whose edges of `verts` are `edges`) with each body's outward normal there.
+fn caps_and_crossings(
+    points: &[([f64; 2], bool)],
+    verts: &[[f64; 2]],
+    edges: &[usize],
+    disc_cap: Cap,
+    ([a, b], chord_at): ([[f64; 2]; 2], usize),
+    c: [f64; 2],
+    role: DiscRole,
+) -> ([Cap; 2], [Crossing; 2]) {
+    let poly_cap = polygon_cap(points.iter().map(|p| p.0), a);
+    let disc_cap = Cap {
+        area: disc_cap.area,
+        moment: [
+            disc_cap.moment[0] - disc_cap.area * a[0],
+            disc_cap.moment[1] - disc_cap.area * a[1],
+        ],
+    };
+    let k = points.len();
+    let edge_normal = |i: usize| {
+        let j = edges[i];
+        let e = sub(verts[(j + 1) % verts.len()], verts[j]);
+        [e[1], -e[0]]
+    };
+    let crossing = |i: usize, p: [f64; 2]| {
+        let (disc_n, poly_n) = (p, edge_normal(i));
+        let (particle, partner) = if role.disc_is_particle {
+            (disc_n, poly_n)
+        } else {
+            (poly_n, disc_n)
+        };
+        Crossing {
+            at: [p[0] + c[0], p[1] + c[1]],
+            particle,
+            partner,
+        }
+    };
+    let crossings = [crossing(chord_at, a), crossing((chord_at + 1) % k, b)];
+    if role.disc_is_particle {
+        ([disc_cap, poly_cap], crossings)
+    } else {
+        ([poly_cap, disc_cap], crossings)
+    }
 }
 
 /// The polygon `verts` (relative to the circle's centre) clipped by the circle of radius `r`:
