@@ -83,11 +83,12 @@ class Record:
     0 for the plate)."""
     partner_vy_out: float
     momentum_residual: float | None
-    """|linear momentum after - before| / (m* v): round-off for a pair (integrated in its
-    centre-of-mass frame); None for the plate."""
+    """|linear momentum after - before| over the largest momentum in the balance (docs/model.md
+    17.4): round-off for a pair (integrated in its centre-of-mass frame); None for the plate."""
     angular_momentum_residual: float | None
-    """(angular momentum about the pair's centre of mass after - before) / (m* v (r1 + r2)):
-    round-off for a pair (restored by a rigid turn, docs/model.md 17.2); None for the plate."""
+    """(angular momentum about the pair's centre of mass after - before) over its largest term,
+    at least m* v (r1 + r2): round-off for a pair (restored by a rigid turn, docs/model.md 17.2);
+    None for the plate."""
     work_damping: float
     """The part of ``work_normal`` done by the normal dashpot (<= 0); ``work_normal - work_damping``
     is the elastic force's: <= 0 where the law has a potential, of either sign for the area law

@@ -233,12 +233,12 @@ impl Record {
     }
 
     /// A pair's lab velocities (in the frame where the partner was at rest: the centre of
-    /// mass moves at m1 g0 / M throughout) and the residuals of its momenta.
+    /// mass moves at m1 g0 / M throughout) and the residuals of its momenta, each relative to
+    /// the largest momentum in its balance (`momentum_scales`).
     fn close_momenta(&mut self, pair: &Pair, init: &Initial, end: &Ending) {
-        let (m1, m2, ms) = (pair.particle.mass, pair.m2, pair.m_star);
+        let (m1, m2) = (pair.particle.mass, pair.m2);
         let (q, v) = (&end.q, &end.v);
         let g0 = [init.vx, init.vy];
-        let speed = g0[0].hypot(g0[1]);
         let total = m1 + m2;
         let cm = [m1 * g0[0] / total, m1 * g0[1] / total];
         let v1 = [cm[0] + m2 / total * v[0], cm[1] + m2 / total * v[1]];
@@ -249,14 +249,13 @@ impl Record {
             m1 * v1[0] + m2 * v2[0] - m1 * g0[0],
             m1 * v1[1] + m2 * v2[1] - m1 * g0[1],
         ];
-        self.momentum_residual = Some(p[0].hypot(p[1]) / (ms * speed));
-        let l_in = pair.angular_momentum(
-            &[0.0, end.y0, 0.0, 0.0],
-            &[g0[0], g0[1], init.omega, init.partner_omega],
-        );
+        let q_in = [0.0, end.y0, 0.0, 0.0];
+        let v_in = [g0[0], g0[1], init.omega, init.partner_omega];
+        let (p_scale, l_scale) = momentum_scales(pair, [&q_in, q], [&v_in, v], [&v1, &v2]);
+        self.momentum_residual = Some(p[0].hypot(p[1]) / p_scale);
+        let l_in = pair.angular_momentum(&q_in, &v_in);
         let l_out = pair.angular_momentum(q, v);
-        let reach = pair.particle.r + pair.r2;
-        self.angular_momentum_residual = Some((l_out - l_in) / (ms * speed * reach));
+        self.angular_momentum_residual = Some((l_out - l_in) / l_scale);
     }
 
     /// The four outputs whose error `err_est` bounds: e_N, e_T (0 when undefined), e_kin and
@@ -279,6 +278,35 @@ impl Record {
         );
         (0..4).map(|i| (a[i] - b[i]).abs()).fold(0.0, f64::max)
     }
+}
+
+/// The yardsticks of a pair's momentum residuals: the largest momentum in the balance (the
+/// particle's before, m1 |g0|, which is the pair's whole momentum, and each body's after) and
+/// the largest term of the angular momentum about the centre of mass (m* |r x g|, I1 |omega1|,
+/// I2 |omega2|, before and after), each at least the pair's own scale m* v (times r1 + r2).
+/// Relative to m* v alone, a body 4e5 times heavier than the other showed the round-off of its
+/// own momentum, m_big / m* times larger, as a residual of 1.6e-10 (docs/model.md 17.4).
+fn momentum_scales(
+    pair: &Pair,
+    q: [&[f64; 4]; 2],
+    v: [&[f64; 4]; 2],
+    lab: [&[f64; 2]; 2],
+) -> (f64, f64) {
+    let (m1, m2, ms) = (pair.particle.mass, pair.m2, pair.m_star);
+    let speed = v[0][0].hypot(v[0][1]);
+    let p_scale = (m1 * speed)
+        .max(m1 * lab[0][0].hypot(lab[0][1]))
+        .max(m2 * lab[1][0].hypot(lab[1][1]));
+    let reach = pair.particle.r + pair.r2;
+    let l_terms = |q: &[f64; 4], v: &[f64; 4]| {
+        (ms * (q[0] * v[1] - q[1] * v[0]).abs())
+            .max(pair.particle.inertia * v[2].abs())
+            .max(pair.i2 * v[3].abs())
+    };
+    let l_scale = (ms * speed * reach)
+        .max(l_terms(q[0], v[0]))
+        .max(l_terms(q[1], v[1]));
+    (p_scale, l_scale)
 }
 
 /// One value of a record column, as a binding stores it.
