@@ -165,3 +165,24 @@ fn a_disc_with_a_polygon_is_within_tol_across_its_corner_switches() {
         }
     }
 }
+
+/// Twin squares passing by at 5 deg without overlapping (e_N = -1): no local error is made,
+/// but the outputs carry the flight's round-off (up to 22 ulps off the reference's), which
+/// `err_est` states (at least 64 ulps, docs/model.md 17.5).
+#[test]
+fn a_pass_by_states_its_round_off() {
+    let scene = Scene {
+        shape: Shape::regular_polygon(R, 4).unwrap(),
+        mu: 0.3,
+        normal_law: NormalLaw::Linear { kn: 2e8, cn: 20.0 },
+        partner: Some(Partner::of(Shape::regular_polygon(R, 4).unwrap())),
+        ..Scene::default()
+    };
+    let init = Initial::from_angle(V, 5.0, 2.0, 90.0).with_partner(-1.0, 37.0);
+    let rec = within_tol(&scene, &init, R, 1e-6, "twin squares passing by");
+    assert!(
+        rec.max_depth == 0.0 && (rec.e_n + 1.0).abs() < 1e-13,
+        "{rec:?}"
+    );
+    assert!(rec.err_est.unwrap() >= 64.0 * f64::EPSILON);
+}
