@@ -100,47 +100,60 @@ fn the_reruns_share_a_scenes_step_budget() {
     }
 }
 
+/// A disc-polygon impact of `benchmarks/pair_accuracy.py --discs` (seed 1, draws 54, 55, 68):
+/// the particle's and the partner's sides (0: a disc), orientations (deg), the partner's radius
+/// (the particle's is R), gamma, theta (deg) and the spins (rad/s).
+struct DiscCase {
+    n1: usize,
+    phi1: f64,
+    r2: f64,
+    n2: usize,
+    phi2: f64,
+    gamma: f64,
+    theta: f64,
+    w1: f64,
+    w2: f64,
+}
+
 /// A disc with a polygon under the area law, across the switches where a crossing of the
 /// boundaries passes a corner: a 12-gon on a small disc (damped), a 120-gon on a disc
 /// (elastic) and a disc on a small 24-gon (damped), spinning, frictionless, one contact each.
 #[test]
 fn a_disc_with_a_polygon_is_within_tol_across_its_corner_switches() {
-    // (particle's sides or 0 for a disc, phi1, partner's radius, its sides or 0, phi2,
-    // gamma, theta, omega1, omega2)
-    let cases: [(usize, f64, f64, usize, f64, f64, f64, f64, f64); 3] = [
-        (
-            12,
-            5.753968982003594,
-            0.005338624132963387,
-            0,
-            0.0,
-            0.33,
-            61.843527969246395,
-            -2.3000949723601383,
-            6.100319164260502,
-        ),
-        (
-            120,
-            110.16544875585724,
-            0.014503322128136216,
-            0,
-            0.0,
-            0.0,
-            42.76150125438753,
-            1.8199986072848353,
-            2.6185575743602385,
-        ),
-        (
-            0,
-            0.0,
-            0.005566469147054208,
-            24,
-            113.5384622630905,
-            0.33,
-            67.4679088599889,
-            -0.5694516489123489,
-            0.8489200015140709,
-        ),
+    let cases = [
+        DiscCase {
+            n1: 12,
+            phi1: 5.753968982003594,
+            r2: 0.005338624132963387,
+            n2: 0,
+            phi2: 0.0,
+            gamma: 0.33,
+            theta: 61.843527969246395,
+            w1: -2.3000949723601383,
+            w2: 6.100319164260502,
+        },
+        DiscCase {
+            n1: 120,
+            phi1: 110.16544875585724,
+            r2: 0.014503322128136216,
+            n2: 0,
+            phi2: 0.0,
+            gamma: 0.0,
+            theta: 42.76150125438753,
+            w1: 1.8199986072848353,
+            w2: 2.6185575743602385,
+        },
+        DiscCase {
+            n1: 0,
+            phi1: 0.0,
+            r2: 0.005566469147054208,
+            n2: 24,
+            phi2: 113.5384622630905,
+            gamma: 0.33,
+            theta: 67.4679088599889,
+            w1: -0.5694516489123489,
+            w2: 0.8489200015140709,
+        },
     ];
     let body = |n: usize, r: f64| {
         if n == 0 {
@@ -149,7 +162,18 @@ fn a_disc_with_a_polygon_is_within_tol_across_its_corner_switches() {
             Shape::regular_polygon(r, n).unwrap()
         }
     };
-    for (n1, phi1, r2, n2, phi2, gamma, theta, w1, w2) in cases {
+    for c in cases {
+        let DiscCase {
+            n1,
+            phi1,
+            r2,
+            n2,
+            phi2,
+            gamma,
+            theta,
+            w1,
+            w2,
+        } = c;
         let scene = Scene {
             shape: body(n1, R),
             gamma,
