@@ -106,7 +106,8 @@ pub struct SpringRef {
 /// where a corner enters or leaves the other body, or turns to another nearest edge), or the
 /// area law's overlap of two polygons (its vertices as the pairs of edge lines they lie on: a
 /// switch where a crossing of the boundaries passes a corner, where the potential's force
-/// jumps); empty for pairings whose law is smooth without holding anything.
+/// jumps), or the edges a disc's crossings of a polygon lie on; empty for pairings whose law
+/// is smooth without holding anything.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct HeldSprings {
     /// The springs, in no particular order.
@@ -115,6 +116,10 @@ pub struct HeldSprings {
     pub overlap: Vec<(EdgeLine, EdgeLine)>,
     /// The overlap's two vertices that are the chord's ends.
     pub chord: [usize; 2],
+    /// The area law's overlap of a disc with a polygon: the polygon's edges on which the
+    /// chord's two crossings lie, where the polygon's boundary enters the circle and where it
+    /// leaves it (a switch where a crossing passes a corner).
+    pub disc_crossings: Option<[u32; 2]>,
 }
 
 /// How a pair's two bodies overlap at the lanes q = (x, y, phi1, phi2) (the particle's centre

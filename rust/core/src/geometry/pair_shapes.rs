@@ -18,7 +18,7 @@ use super::convex_window::{PlacedPolygon, FEW_CORNERS};
 use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
-use disc_polygon::{disc_polygon, DiscRole};
+use disc_polygon::{crossing_edges, disc_polygon, held_crossings_value, DiscRole};
 use gap::{distance_to_polygon, inside, polygons_overlap, vertices_distance};
 use polygon_polygon::{
     held_overlap, held_overlap_value, held_patch, placed_patch, polygon_patch, Extras,
@@ -191,7 +191,7 @@ impl<'a> ShapePair<'a> {
             }
             None => {
                 let (c, r, placed, sign) = self.disc_and_polygon(q)?;
-                self.disc_with_polygon(c, r, placed, at, sign)
+                self.disc_with_polygon(c, r, placed, at, (sign, None))
             }
         }
     }
@@ -224,6 +224,21 @@ impl<'a> ShapePair<'a> {
             let (verts, _) = &mut *cell.borrow_mut();
             place_into(verts, poly, at, phi);
             parted_disc_patch(c, r, verts, [q[0], q[1]], sign)
+        }))
+    }
+
+    /// Calls `f` with a disc-polygon pair's polygon at lanes `q`, placed relative to the disc's
+    /// centre, and the disc's radius; `None` for two polygons.
+    fn with_disc_centred<R>(
+        &self,
+        q: &[f64; 4],
+        f: impl FnOnce(&[[f64; 2]], f64) -> R,
+    ) -> Option<R> {
+        let (c, r, (poly, at, phi), _) = self.disc_and_polygon(q)?;
+        Some(PLACED.with(|cell| {
+            let (verts, _) = &mut *cell.borrow_mut();
+            place_into(verts, poly, sub(at, c), phi);
+            f(verts, r)
         }))
     }
 
@@ -307,14 +322,15 @@ impl<'a> ShapePair<'a> {
 
     /// The overlap of the disc of radius `r` centred at `c` with the polygon placed at `at`
     /// and turned by `phi`, the particle's centre at `q`: the polygon's vertices placed once
-    /// for the clip and the linear law's spring (`sign` as for [`disc_spring`]).
+    /// for the clip and the linear law's spring (`sign` as for [`disc_spring`]); the area
+    /// law's crossings continued from the edges `held` ([`HeldSprings::disc_crossings`]).
     fn disc_with_polygon(
         &self,
         c: [f64; 2],
         r: f64,
         (poly, at, phi): (&Polygon, [f64; 2], f64),
         q: [f64; 2],
-        sign: f64,
+        (sign, held): (f64, Option<[u32; 2]>),
     ) -> Option<ShapePatch> {
         PLACED.with(|cell| {
             let (verts, _) = &mut *cell.borrow_mut();
@@ -322,6 +338,7 @@ impl<'a> ShapePair<'a> {
             let role = DiscRole {
                 push: !self.springs,
                 disc_is_particle: sign > 0.0,
+                held,
             };
             let mut p = disc_polygon(c, r, verts.iter().copied(), q, role)?;
             if self.springs {
@@ -367,7 +384,8 @@ impl PairGeometry for ShapePair<'_> {
     }
 
     fn holds_springs(&self) -> bool {
-        self.polygons().is_some()
+        // A disc with a polygon: the area law's crossings (its one linear spring is smooth).
+        self.polygons().is_some() || !self.springs
     }
 
     fn held_springs(&self, q: &[f64; 4]) -> HeldSprings {
@@ -379,7 +397,10 @@ impl PairGeometry for ShapePair<'_> {
                 let (pa, pb) = placed_pair(ab, q);
                 held_overlap(&pa, &pb, [q[0], q[1]])
             }
-            None => HeldSprings::default(),
+            None => HeldSprings {
+                disc_crossings: self.with_disc_centred(q, crossing_edges).flatten(),
+                ..HeldSprings::default()
+            },
         }
     }
 
@@ -391,6 +412,12 @@ impl PairGeometry for ShapePair<'_> {
                 Some(ab) if !held.overlap.is_empty() => {
                     let (pa, pb) = placed_pair(ab, q);
                     let p = held_patch(&pa, &pb, [q[0], q[1]], held)?;
+                    Some(self.frame_of(p, q))
+                }
+                None if held.disc_crossings.is_some() => {
+                    let (c, r, placed, sign) = self.disc_and_polygon(q)?;
+                    let both = (sign, held.disc_crossings);
+                    let p = self.disc_with_polygon(c, r, placed, [q[0], q[1]], both)?;
                     Some(self.frame_of(p, q))
                 }
                 _ => self.frame(q),
@@ -426,6 +453,10 @@ impl PairGeometry for ShapePair<'_> {
                 let (pa, pb) = placed_pair(ab, q);
                 held_overlap_value(&pa, &pb, held)
             }
+            None => held
+                .disc_crossings
+                .and_then(|e| self.with_disc_centred(q, |v, r| held_crossings_value(v, r, e)))
+                .unwrap_or(f64::NEG_INFINITY),
             _ => f64::NEG_INFINITY,
         }
     }

@@ -25,6 +25,9 @@ pub(super) struct DiscRole {
     pub push: bool,
     /// The disc is the particle (else the partner).
     pub disc_is_particle: bool,
+    /// The polygon's edges on which the chord's crossings are held (`HeldSprings`), the
+    /// overlap continued smoothly from them; `None`: the overlap as it is.
+    pub held: Option<[u32; 2]>,
 }
 
 thread_local! {
@@ -56,7 +59,10 @@ pub(super) fn disc_polygon(
         points.clear();
         exits.clear();
         edges.clear();
-        clip_by_circle(verts, r, points, exits, edges);
+        match role.held {
+            None => clip_by_circle(verts, r, points, exits, edges),
+            Some(held) => held_clip(verts, r, held, points, exits, edges),
+        }
         if points.is_empty() {
             // No edge reaches the circle: the disc lies inside the polygon, or apart.
             return None;
@@ -188,19 +194,9 @@ fn clip_by_circle(
     for j in 0..n {
         let (p, q) = (verts[j], verts[(j + 1) % n]);
         let d = sub(q, p);
-        // |p + t d|^2 = r^2: t = (-b -+ sqrt(b^2 - a c)) / a with b = p.d.
-        let (a, b, cc) = (dot(d, d), dot(p, d), dot(p, p) - r * r);
-        let disc = b * b - a * cc;
-        if !(disc > 0.0) {
+        let Some((t0, t1)) = line_roots(p, d, r) else {
             continue;
-        }
-        let s = disc.sqrt();
-        // Stable roots: the larger in magnitude first.
-        let big = -b - s.copysign(b);
-        let (mut t0, mut t1) = (big / a, cc / big);
-        if t0 > t1 {
-            std::mem::swap(&mut t0, &mut t1);
-        }
+        };
         if t1 <= 0.0 || t0 >= 1.0 {
             continue;
         }
@@ -219,6 +215,110 @@ fn clip_by_circle(
         }
         edges.push(j);
     }
+}
+
+/// Where the line p + t d crosses the circle of radius `r` about the origin: the parameters
+/// t0 <= t1 where it enters and leaves it; `None` when it misses it or touches it.
+fn line_roots(p: [f64; 2], d: [f64; 2], r: f64) -> Option<(f64, f64)> {
+    // |p + t d|^2 = r^2: t = (-b -+ sqrt(b^2 - a c)) / a with b = p.d.
+    let (a, b, cc) = (dot(d, d), dot(p, d), dot(p, p) - r * r);
+    let disc = b * b - a * cc;
+    if !(disc > 0.0) {
+        return None;
+    }
+    let s = disc.sqrt();
+    // Stable roots: the larger in magnitude first.
+    let big = -b - s.copysign(b);
+    let (t0, t1) = (big / a, cc / big);
+    Some((t0.min(t1), t0.max(t1)))
+}
+
+/// The polygon's edge `j` of `verts`, from its vertex j to the next.
+fn edge(verts: &[[f64; 2]], j: u32) -> ([f64; 2], [f64; 2]) {
+    let j = j as usize;
+    let p = verts[j];
+    (p, sub(verts[(j + 1) % verts.len()], p))
+}
+
+/// The overlap of the polygon `verts` (relative to the circle's centre) and the circle of
+/// radius `r` with its crossings held on the edges `[entry, exit]` (`HeldSprings`), laid out as
+/// [`clip_by_circle`] lays out one arc's: where the line of edge `entry` enters the circle,
+/// the polygon's corners after it up to edge `exit`'s start, and where the line of edge `exit`
+/// leaves the circle, each crossing on its line whether or not it has passed its edge's end
+/// since (the switch is located by [`held_crossings_value`]). Empty when a line misses the
+/// circle.
+fn held_clip(
+    verts: &[[f64; 2]],
+    r: f64,
+    [entry, exit]: [u32; 2],
+    out: &mut Vec<([f64; 2], bool)>,
+    exits: &mut Vec<bool>,
+    edges: &mut Vec<usize>,
+) {
+    let n = verts.len();
+    let (e_in, e_out) = (edge(verts, entry), edge(verts, exit));
+    let (Some((t_in, _)), Some((_, t_out))) = (
+        line_roots(e_in.0, e_in.1, r),
+        line_roots(e_out.0, e_out.1, r),
+    ) else {
+        return;
+    };
+    let at = |(p, d): ([f64; 2], [f64; 2]), t: f64| [p[0] + t * d[0], p[1] + t * d[1]];
+    out.push((at(e_in, t_in), true));
+    exits.push(false);
+    edges.push(entry as usize);
+    let mut j = entry as usize;
+    while j != exit as usize {
+        // The corner at the end of edge j, inside the circle.
+        j = (j + 1) % n;
+        out.push((verts[j], false));
+        exits.push(false);
+        edges.push((j + n - 1) % n);
+    }
+    out.push((at(e_out, t_out), true));
+    exits.push(true);
+    edges.push(exit as usize);
+}
+
+/// The polygon's edges `[entry, exit]` on which the crossings of the overlap's chord lie (the
+/// arc with the longest chord, as [`disc_polygon`] takes it), for the polygon `verts` relative
+/// to the circle's centre; `None` when apart.
+pub(super) fn crossing_edges(verts: &[[f64; 2]], r: f64) -> Option<[u32; 2]> {
+    let (mut points, mut exits, mut edges) = (Vec::new(), Vec::new(), Vec::new());
+    clip_by_circle(verts, r, &mut points, &mut exits, &mut edges);
+    let k = points.len();
+    let mut best: Option<(f64, [u32; 2])> = None;
+    for i in (0..k).filter(|&i| exits[i]) {
+        let d = sub(points[(i + 1) % k].0, points[i].0);
+        let len2 = dot(d, d);
+        if best.is_none_or(|(l, _)| len2 > l) {
+            best = Some((len2, [edges[(i + 1) % k] as u32, edges[i] as u32]));
+        }
+    }
+    best.map(|(_, held)| held)
+}
+
+/// The event function of the crossings held on the edges `[entry, exit]` of the polygon
+/// `verts` (relative to the circle's centre): > 0 once one of them has passed an end of its
+/// edge, in units of the edge, less 1e-9 (as for two polygons' held overlap). Where the line of
+/// an edge misses the circle its crossing is its point nearest the circle, passed the edge's
+/// end or not as that point is.
+pub(super) fn held_crossings_value(verts: &[[f64; 2]], r: f64, [entry, exit]: [u32; 2]) -> f64 {
+    let param = |j: u32, leaving: bool| {
+        let (p, d) = edge(verts, j);
+        match line_roots(p, d, r) {
+            Some((t0, t1)) => {
+                if leaving {
+                    t1
+                } else {
+                    t0
+                }
+            }
+            None => -dot(p, d) / dot(d, d),
+        }
+    };
+    let past = |t: f64| (-t).max(t - 1.0);
+    past(param(entry, false)).max(past(param(exit, true))) - 1e-9
 }
 
 /// Area and first moment (relative to the frame's origin) of the polygon through `points`,

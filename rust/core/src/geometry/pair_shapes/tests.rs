@@ -314,3 +314,51 @@ fn a_touching_corner_pushes_the_particle_away() {
         fr.n
     );
 }
+
+/// A disc sliding along a face of a square under the area law: the crossings held on the face
+/// give the overlap as it is until one passes the face's corner (the held event function
+/// changes sign there), then the face continued (more area than the square's), and held anew
+/// past the corner the overlap as it is again.
+#[test]
+fn a_disc_holds_its_crossings_until_one_passes_a_corner() {
+    let (r, r2) = (0.01, 0.02);
+    let (a, b) = (Shape::Disc { r }, square(r2));
+    let pair = ShapePair::new(&a, &b).unwrap();
+    assert!(pair.holds_springs());
+    // Square turned by 45 degrees: its top face at y = r2 / sqrt 2, ending at x = r2 / sqrt 2;
+    // the disc 1e-3 deep, its crossings 4.36e-3 either side of its centre.
+    let top = r2 / 2f64.sqrt();
+    let at = |x: f64| [x, top + r - 1e-3, 0.7, PI / 4.0];
+    let held = pair.held_springs(&at(0.005));
+    assert!(held.disc_crossings.is_some(), "{held:?}");
+    let close = |p: PairFrame, q: PairFrame| {
+        (p.area - q.area).abs() < 1e-12 * q.area
+            && (0..4).all(|i| (p.area_push[i] - q.area_push[i]).abs() < 1e-12 * q.area)
+    };
+    for x in [0.0, 0.005, 0.0095] {
+        let (h, f) = (pair.frame_held(&at(x), &held), pair.frame(&at(x)));
+        assert!(close(h.unwrap(), f.unwrap()), "{x}: {h:?} vs {f:?}");
+        assert!(pair.held_springs_value(&at(x), &held) < 0.0);
+    }
+    let past = 0.0099;
+    assert!(pair.held_springs_value(&at(past), &held) > 0.0);
+    let (h, f) = (
+        pair.frame_held(&at(past), &held).unwrap(),
+        pair.frame(&at(past)).unwrap(),
+    );
+    assert!(
+        h.area > f.area,
+        "the face continued: {} vs {}",
+        h.area,
+        f.area
+    );
+    let anew = pair.held_springs(&at(past));
+    assert_ne!(anew.disc_crossings, held.disc_crossings);
+    assert!(close(pair.frame_held(&at(past), &anew).unwrap(), f));
+    // The linear law's one disc spring is smooth: nothing held.
+    let springs = ShapePair {
+        springs: true,
+        ..pair
+    };
+    assert!(!springs.holds_springs());
+}

@@ -23,6 +23,7 @@ use crate::model::{Initial, Integrator, Model, NormalLaw, Pair};
 
 mod adaptive;
 mod depth;
+mod global;
 mod ode;
 mod switches;
 
@@ -66,7 +67,7 @@ fn run_on<G: PairGeometry>(
     let start = Start::of(&geometry, init);
     let depth_est = checked_depth(pair, init, &geometry, &start)?;
     if pair.law.scene.integrator.is_adaptive() {
-        return run_adaptive(pair, init, (geometry, start), depth_est, trace, cancel);
+        return global::run_controlled(pair, init, (geometry, start), depth_est, trace, cancel);
     }
     let mut rec = run_fixed(pair, init, (geometry, start), depth_est, trace, cancel)?;
     if pair.law.scene.error_estimate {
