@@ -28,6 +28,8 @@ struct ClipScratch {
     out: Vec<ClipVertex>,
     window: WindowScratch,
     points: Vec<([f64; 2], bool)>,
+    /// Where the last search of [`robustly_overlapping`] ended on each polygon.
+    inside_hints: [usize; 2],
 }
 
 thread_local! {
@@ -88,6 +90,7 @@ fn clipped_patch(
             out,
             window,
             points,
+            ..
         } = &mut *buf;
         if !clip(out, window) {
             return None;
@@ -183,20 +186,60 @@ pub(super) fn held_patch(
             out,
             window,
             points,
+            inside_hints,
         } = &mut *buf;
-        if !clip_windowed(pa, pb, at, out, window) {
-            return None;
+        let continued = |out: &mut Vec<ClipVertex>| {
+            out.clear();
+            out.extend(held.overlap.iter().map(|&(before, after)| ClipVertex {
+                p: meet(before, after, pa, pb),
+                before,
+                after,
+            }));
+        };
+        continued(out);
+        // Whether the bodies overlap: certain where a small disc lies inside both, else the
+        // clip's own answer (its polygon is then dropped for the held one).
+        if !robustly_overlapping(pa, pb, at, out, inside_hints) {
+            if !clip_windowed(pa, pb, at, out, window) {
+                return None;
+            }
+            continued(out);
         }
-        out.clear();
-        out.extend(held.overlap.iter().map(|&(before, after)| ClipVertex {
-            p: meet(before, after, pa, pb),
-            before,
-            after,
-        }));
         let [k0, k1] = held.chord;
         patch_of(out, (k0, k1), (pa, pb), at, (Extras::Push, None), points)
     })
 }
+
+/// Whether the placed polygons certainly overlap: a disc about the mean of the vertices `v`
+/// (the held overlap continued), far wider than the round-off of the clip's arithmetic
+/// ([`OVERLAP_MARGIN`] of the coordinates), lies inside both. Then the clip, which keeps such
+/// a disc, finds them overlapping: it need not run (in the adaptive path's pieces it ran
+/// at every stage only for that answer: a third of a polygon pair's evaluation).
+fn robustly_overlapping(
+    pa: &PlacedPolygon,
+    pb: &PlacedPolygon,
+    at: [f64; 2],
+    v: &[ClipVertex],
+    hints: &mut [usize; 2],
+) -> bool {
+    if v.len() < 3 {
+        return false;
+    }
+    let k = v.len() as f64;
+    let (sx, sy) = v
+        .iter()
+        .fold((0.0, 0.0), |(x, y), w| (x + w.p[0], y + w.p[1]));
+    let c = [sx / k, sy / k];
+    let scale =
+        pa.polygon().circumradius() + pb.polygon().circumradius() + at[0].abs() + at[1].abs();
+    let delta = OVERLAP_MARGIN * scale;
+    let [ha, hb] = hints;
+    pa.holds_disc(c, delta, ha) && pb.holds_disc(c, delta, hb)
+}
+
+/// The radius of the disc that certifies an overlap without the clip, relative to the
+/// coordinates' size: a million times their round-off.
+const OVERLAP_MARGIN: f64 = 1e-10;
 
 /// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
 /// crossing of the two lines (interpolated along the first's edge, from its end nearer the
@@ -310,5 +353,63 @@ fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
         [forward, back]
     } else {
         [back, forward]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Polygon;
+
+    /// Where a small disc about the held overlap's vertices' mean lies inside both polygons
+    /// the clip finds them overlapping (so the adaptive path's pieces need not ask it): random
+    /// regular polygons of 3 to 200 corners, sizes 0.1 to 10 apart, every orientation, from
+    /// grazing to deep; and the certificate holds in most of the overlaps deeper than a
+    /// millionth of the reach.
+    #[test]
+    fn a_certain_overlap_is_one_the_clip_finds() {
+        let mut seed = 3u64;
+        let mut rng = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let (mut certain, mut deep) = (0, 0);
+        let mut window = WindowScratch::default();
+        let (mut out, mut clipped) = (Vec::new(), Vec::new());
+        let mut hints = [0, 0];
+        for _ in 0..5000 {
+            let (n, m) = (3 + (rng() * 200.0) as usize, 3 + (rng() * 200.0) as usize);
+            let (r1, r2) = (10f64.powf(rng() * 2.0 - 1.0), 1.0);
+            let (pa, pb) = (
+                Polygon::regular(r1, n).unwrap(),
+                Polygon::regular(r2, m).unwrap(),
+            );
+            let ang = rng() * 6.3;
+            let depth = 10f64.powf(-8.0 * rng());
+            let d = (r1 + r2) * (1.0 - depth);
+            let at = [d * ang.cos(), d * ang.sin()];
+            let a = PlacedPolygon::new(&pa, at, rng() * 6.3);
+            let b = PlacedPolygon::new(&pb, [0.0, 0.0], rng() * 6.3);
+            // The held overlap: the clip's own vertices here (a piece's start).
+            let overlaps = clip_windowed(&a, &b, at, &mut clipped, &mut window);
+            if !overlaps || farthest_crossings(&clipped).is_none() {
+                continue;
+            }
+            out.clear();
+            out.extend(clipped.iter().map(|v| ClipVertex {
+                p: meet(v.before, v.after, &a, &b),
+                ..*v
+            }));
+            let area = polygon_cap(out.iter().map(|v| v.p), out[0].p).area;
+            deep += usize::from(area > 1e-12 * (r1 + r2).powi(2));
+            if robustly_overlapping(&a, &b, at, &out, &mut hints) {
+                certain += 1;
+                assert!(clip_windowed(&a, &b, at, &mut clipped, &mut window));
+            }
+        }
+        eprintln!("{certain} certain of {deep} deep");
+        assert!(certain * 10 >= deep * 8, "{certain} of {deep}");
     }
 }
