@@ -4,7 +4,7 @@
 
 use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::springs::corner_springs;
-use super::{assemble, sub, ShapePatch};
+use super::{assemble_into, sub, ShapePatch};
 use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine, Ring};
 use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
 use crate::geometry::pair::HeldSprings;
@@ -38,36 +38,42 @@ thread_local! {
 
 /// The overlap of the placed polygons `pa` (the particle, its centre at `at`) and `pb` (the
 /// partner), with what `extras` asks for (the linear law's springs read every corner: all
-/// placed); `None` when apart, touching, or without two crossings (one inside the other).
+/// placed), into `p`; `false` when apart, touching, or without two crossings (one inside the
+/// other).
 pub(super) fn polygon_patch(
     pa: &[[f64; 2]],
     pb: &[[f64; 2]],
     at: [f64; 2],
     reach: f64,
     extras: Extras,
-) -> Option<ShapePatch> {
+    p: &mut ShapePatch,
+) -> bool {
     clipped_patch(
         at,
         reach,
         |out, window| clip_convex(pa, pb, at, out, &mut window.next),
-        |out, chord, points| patch_of(out, chord, (pa, pb), at, (extras, Some((pa, pb))), points),
+        |out, chord, points| {
+            let all = Some((pa, pb));
+            patch_of(out, chord, (pa, pb), at, (extras, all), (points, p))
+        },
     )
 }
 
 /// The area law's overlap of the polygons `pa` (the particle, its centre at `at`) and `pb`,
-/// with its potential and push, reading only the corners near the contact (the windowed
-/// clip, `convex_window.rs`); `None` as for [`polygon_patch`].
+/// with its potential and push, into `p`, reading only the corners near the contact (the
+/// windowed clip, `convex_window.rs`); `false` as for [`polygon_patch`].
 pub(super) fn placed_patch(
     pa: &PlacedPolygon,
     pb: &PlacedPolygon,
     at: [f64; 2],
     reach: f64,
-) -> Option<ShapePatch> {
+    p: &mut ShapePatch,
+) -> bool {
     clipped_patch(
         at,
         reach,
         |out, window| clip_windowed(pa, pb, at, out, window),
-        |out, chord, points| patch_of(out, chord, (pa, pb), at, (Extras::Push, None), points),
+        |out, chord, points| patch_of(out, chord, (pa, pb), at, (Extras::Push, None), (points, p)),
     )
 }
 
@@ -79,10 +85,10 @@ fn clipped_patch(
     at: [f64; 2],
     reach: f64,
     clip: impl FnOnce(&mut Vec<ClipVertex>, &mut WindowScratch) -> bool,
-    patch: impl FnOnce(&[ClipVertex], (usize, usize), &mut Vec<([f64; 2], bool)>) -> Option<ShapePatch>,
-) -> Option<ShapePatch> {
+    patch: impl FnOnce(&[ClipVertex], (usize, usize), &mut Vec<([f64; 2], bool)>) -> bool,
+) -> bool {
     if at[0] * at[0] + at[1] * at[1] >= reach * reach {
-        return None;
+        return false;
     }
     CLIP.with(|cell| {
         let mut buf = cell.borrow_mut();
@@ -93,10 +99,12 @@ fn clipped_patch(
             ..
         } = &mut *buf;
         if !clip(out, window) {
-            return None;
+            return false;
         }
-        let chord = farthest_crossings(out)?;
-        patch(out, chord, points)
+        match farthest_crossings(out) {
+            Some(chord) => patch(out, chord, points),
+            None => false,
+        }
     })
 }
 
@@ -104,20 +112,20 @@ fn clipped_patch(
 type AllCorners<'a> = Option<(&'a [[f64; 2]], &'a [[f64; 2]])>;
 
 /// The patch of the overlap `out` (the clip's vertices) with the chord between its vertices
-/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`; the springs need
-/// every corner placed (`all`).
+/// `chord`, the polygons `pa`, `pb` placed, the particle's centre at `at`, into `p`; the
+/// springs need every corner placed (`all`).
 fn patch_of<R: Ring + ?Sized>(
     out: &[ClipVertex],
     (k0, k1): (usize, usize),
     (pa, pb): (&R, &R),
     at: [f64; 2],
     (extras, all): (Extras, AllCorners),
-    points: &mut Vec<([f64; 2], bool)>,
-) -> Option<ShapePatch> {
+    (points, p): (&mut Vec<([f64; 2], bool)>, &mut ShapePatch),
+) -> bool {
     let (c0, c1) = (out[k0], out[k1]);
     let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
     if !(whole.area > 0.0) {
-        return None;
+        return false;
     }
     let centroid = [
         c0.p[0] + whole.moment[0] / whole.area,
@@ -126,7 +134,9 @@ fn patch_of<R: Ring + ?Sized>(
     points.clear();
     points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
     let across = shared_edge_normal(&c0, &c1, pa, pb);
-    let mut p = assemble(at, whole.area, centroid, [c0.p, c1.p], points, across)?;
+    if !assemble_into(p, at, (whole.area, centroid), [c0.p, c1.p], points, across) {
+        return false;
+    }
     match extras {
         Extras::Springs => {
             if let Some((sa, sb)) = all {
@@ -147,7 +157,7 @@ fn patch_of<R: Ring + ?Sized>(
         }
         Extras::Nothing => {}
     }
-    Some(p)
+    true
 }
 
 /// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
@@ -172,14 +182,15 @@ pub(super) fn held_overlap(pa: &PlacedPolygon, pb: &PlacedPolygon, at: [f64; 2])
 
 /// The area law's patch with the overlap `held` continued smoothly: each held vertex where its
 /// two edge lines meet, whether or not a crossing has passed the end of its edge since (the
-/// switch is located by [`held_overlap_value`]); `None` when the bodies do not overlap, or the
-/// continued overlap has no area.
+/// switch is located by [`held_overlap_value`]), into `p`; `false` when the bodies do not
+/// overlap, or the continued overlap has no area.
 pub(super) fn held_patch(
     pa: &PlacedPolygon,
     pb: &PlacedPolygon,
     at: [f64; 2],
     held: &HeldSprings,
-) -> Option<ShapePatch> {
+    p: &mut ShapePatch,
+) -> bool {
     CLIP.with(|cell| {
         let mut buf = cell.borrow_mut();
         let ClipScratch {
@@ -201,12 +212,19 @@ pub(super) fn held_patch(
         // clip's own answer (its polygon is then dropped for the held one).
         if !robustly_overlapping(pa, pb, at, out, inside_hints) {
             if !clip_windowed(pa, pb, at, out, window) {
-                return None;
+                return false;
             }
             continued(out);
         }
         let [k0, k1] = held.chord;
-        patch_of(out, (k0, k1), (pa, pb), at, (Extras::Push, None), points)
+        patch_of(
+            out,
+            (k0, k1),
+            (pa, pb),
+            at,
+            (Extras::Push, None),
+            (points, p),
+        )
     })
 }
 
