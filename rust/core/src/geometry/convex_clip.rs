@@ -13,6 +13,9 @@
 pub trait Ring {
     /// The number of corners.
     fn count(&self) -> usize;
+    /// Whether [`Ring::clears`] can tell an edge clear (then the clip skips its own, placed,
+    /// test of the bounding circle, which would almost never tell more).
+    const KNOWS_LINES: bool = false;
     /// Corner `i` (0 <= i < count), placed.
     fn corner(&self, i: usize) -> [f64; 2];
     /// Whether the line of edge `j` certainly has the disc of radius `reach` about `centre`
@@ -112,21 +115,24 @@ pub(crate) fn edge<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
 }
 
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
-/// `false` when every vertex lies inside (nothing to do: `next` untouched).
+/// `false` when every vertex lies inside (nothing to do: `next` untouched). With `bound`,
+/// first the polygon's bounding circle against the edge's line.
 pub(crate) fn clip_by_edge(
     out: &[ClipVertex],
     next: &mut Vec<ClipVertex>,
     bj: [[f64; 2]; 2],
     j: u32,
-    bound: Bound,
+    bound: Option<Bound>,
 ) -> bool {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
     // The polygon's bounding circle inside the half-plane: nothing to clip (one test for
     // the many edges far from the contact).
-    let c = side(bound.centre);
-    if c >= 0.0 && c * c >= bound.radius2 * (e[0] * e[0] + e[1] * e[1]) {
-        return false;
+    if let Some(bound) = bound {
+        let c = side(bound.centre);
+        if c >= 0.0 && c * c >= bound.radius2 * (e[0] * e[0] + e[1] * e[1]) {
+            return false;
+        }
     }
     if out.iter().all(|v| side(v.p) >= 0.0) {
         return false;
@@ -176,9 +182,16 @@ impl Bound {
             .iter()
             .fold((0.0, 0.0), |(x, y), w| (x + w.p[0], y + w.p[1]));
         let centre = [sx / k, sy / k];
+        // A plain comparison: f64::max's NaN handling doubled this loop's instructions (the
+        // same result on these finite values).
         let radius2 = v.iter().fold(0.0f64, |r, w| {
             let d = sub(w.p, centre);
-            r.max(d[0] * d[0] + d[1] * d[1])
+            let d2 = d[0] * d[0] + d[1] * d[1];
+            if d2 > r {
+                d2
+            } else {
+                r
+            }
         });
         // A hair more, so that round-off never skips a clip that cuts.
         let radius2 = radius2 * (1.0 + 1e-9);
@@ -266,10 +279,11 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
     for j in edges {
         // An edge whose line is far from the clip changes nothing: told from its body-frame
         // line where the ring knows it, without placing its corners.
-        if b.clears(j, bound.centre, bound.radius) {
+        if R::KNOWS_LINES && b.clears(j, bound.centre, bound.radius) {
             continue;
         }
-        if clip_by_edge(out, next, edge(b, j), j, bound) {
+        let placed_bound = (!R::KNOWS_LINES).then_some(bound);
+        if clip_by_edge(out, next, edge(b, j), j, placed_bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();

@@ -128,6 +128,8 @@ impl<'a> PlacedPolygon<'a> {
 }
 
 impl Ring for PlacedPolygon<'_> {
+    const KNOWS_LINES: bool = true;
+
     #[inline(always)]
     fn count(&self) -> usize {
         self.poly.vertices.len()
