@@ -262,34 +262,41 @@ pub fn clip_convex<R: Ring + ?Sized>(
         return false;
     }
     let rest = (1..m).map(|k| ((j0 + k) % m) as u32);
-    clip_through(a, b, rest, out, next)
+    clip_through(a, b, rest, (out, next), true)
 }
 
 /// Clips the first clip `out` by B's edges `edges` in turn (`next` is scratch space), then
 /// sets each vertex at its exact position; `false` where the overlap vanishes. The full clip
 /// and the windowed one (`convex_window.rs`) go on from their first clip by this one loop.
+/// With `bounded`, each edge's line is first held against the polygon's bounding circle (many
+/// edges far from the contact); without, every edge is tested vertex by vertex (edges chosen
+/// because they may cut: the circle would pass few of them by, at the cost of its update).
 pub(crate) fn clip_through<R: Ring + ?Sized>(
     a: &R,
     b: &R,
     edges: impl Iterator<Item = u32>,
-    out: &mut Vec<ClipVertex>,
-    next: &mut Vec<ClipVertex>,
+    (out, next): (&mut Vec<ClipVertex>, &mut Vec<ClipVertex>),
+    bounded: bool,
 ) -> bool {
-    let mut bound = Bound::of(out);
+    let mut bound = bounded.then(|| Bound::of(out));
     for j in edges {
         // An edge whose line is far from the clip changes nothing: told from its body-frame
         // line where the ring knows it, without placing its corners.
-        if R::KNOWS_LINES && b.clears(j, bound.centre, bound.radius) {
-            continue;
+        if let Some(c) = bound.filter(|_| R::KNOWS_LINES) {
+            if b.clears(j, c.centre, c.radius) {
+                continue;
+            }
         }
-        let placed_bound = (!R::KNOWS_LINES).then_some(bound);
+        let placed_bound = bound.filter(|_| !R::KNOWS_LINES);
         if clip_by_edge(out, next, edge(b, j), j, placed_bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();
                 return false;
             }
-            bound = Bound::of(out);
+            if bounded {
+                bound = Some(Bound::of(out));
+            }
         }
     }
     set_exact_positions(out, a, b);

@@ -256,22 +256,18 @@ fn clip_in_window(
     // Where B's edges cannot be ruled out, every edge after the first, as the full clip
     // goes on from the same first clip.
     let m = b.count();
-    let (run, all) = match edges_cutting(b, out, j0, &mut scratch.hints.towards) {
-        Some(run) => (run, 0..0),
+    let next = &mut scratch.next;
+    match edges_cutting(b, out, j0, &mut scratch.hints.towards) {
+        // The edges that may cut: each tested vertex by vertex (a bounding circle would pass
+        // few of them by).
+        Some(run) => clip_through(a, b, in_clip_order(run, j0, m), (out, next), false),
         None => {
             #[cfg(test)]
             FALLBACKS.with(|f| f.set(f.get() + 1));
-            ((0, 0), 1..m)
+            let every = (1..m).map(move |k| ((j0 + k) % m) as u32);
+            clip_through(a, b, every, (out, next), true)
         }
-    };
-    let every = all.map(move |k| ((j0 + k) % m) as u32);
-    clip_through(
-        a,
-        b,
-        in_clip_order(run, j0, m).chain(every),
-        out,
-        &mut scratch.next,
-    )
+    }
 }
 
 /// From corner `k`, along the boundary of `ring` while `f` of the corner grows: for a convex
