@@ -399,8 +399,14 @@ fn edges_cutting(
         let d = [v.p[0] - b.centre()[0], v.p[1] - b.centre()[1]];
         let w = b.in_body(d);
         let limit = poly.inradius - b.round_off(d);
-        if limit > 0.0 && w[0] * w[0] + w[1] * w[1] <= limit * limit {
+        let w2 = w[0] * w[0] + w[1] * w[1];
+        if limit > 0.0 && w2 <= limit * limit {
             continue;
+        }
+        // Twice the inscribed radius away, a vertex can lie outside a third of the edges'
+        // lines (a large body pressed on a small one): every edge, without walking them.
+        if w2 >= 4.0 * poly.inradius * poly.inradius {
+            return None;
         }
         let along = |j: usize| lines[j][0] * w[0] + lines[j][1] * w[1];
         let k = poly.lowest_vertex_near(*hint, -w[0], -w[1]);
