@@ -553,11 +553,9 @@ fn assemble_into(
     }
     // The chord's direction carries the round-off of its ends over its length; `across`
     // carries theirs over its own, and is taken where that is the longer.
+    let across = across.map(|m| (m, m[0].hypot(m[1])));
     let mut n = match across {
-        Some(m) if m[0].hypot(m[1]) > chord => {
-            let len = m[0].hypot(m[1]);
-            [m[0] / len, m[1] / len]
-        }
+        Some((m, len)) if len > chord => [m[0] / len, m[1] / len],
         _ => [-d[1] / chord, d[0] / chord],
     };
     if dot(n, sub(q, p0)) < 0.0 {
