@@ -13,8 +13,18 @@
 pub trait Ring {
     /// The number of corners.
     fn count(&self) -> usize;
+    /// Whether [`Ring::clears`] can tell an edge clear (then the clip skips its own, placed,
+    /// test of the bounding circle, which would almost never tell more).
+    const KNOWS_LINES: bool = false;
     /// Corner `i` (0 <= i < count), placed.
     fn corner(&self, i: usize) -> [f64; 2];
+    /// Whether the line of edge `j` certainly has the disc of radius `reach` about `centre`
+    /// inside, beyond the round-off of its placed corners, told without placing them; `false`
+    /// where that is not known (the clip then tests the edge as placed).
+    #[inline(always)]
+    fn clears(&self, _j: u32, _centre: [f64; 2], _reach: f64) -> bool {
+        false
+    }
 }
 
 impl Ring for [[f64; 2]] {
@@ -105,21 +115,24 @@ pub(crate) fn edge<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
 }
 
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
-/// `false` when every vertex lies inside (nothing to do: `next` untouched).
+/// `false` when every vertex lies inside (nothing to do: `next` untouched). With `bound`,
+/// first the polygon's bounding circle against the edge's line.
 pub(crate) fn clip_by_edge(
     out: &[ClipVertex],
     next: &mut Vec<ClipVertex>,
     bj: [[f64; 2]; 2],
     j: u32,
-    bound: Bound,
+    bound: Option<Bound>,
 ) -> bool {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
     // The polygon's bounding circle inside the half-plane: nothing to clip (one test for
     // the many edges far from the contact).
-    let c = side(bound.centre);
-    if c >= 0.0 && c * c >= bound.radius2 * (e[0] * e[0] + e[1] * e[1]) {
-        return false;
+    if let Some(bound) = bound {
+        let c = side(bound.centre);
+        if c >= 0.0 && c * c >= bound.radius2 * (e[0] * e[0] + e[1] * e[1]) {
+            return false;
+        }
     }
     if out.iter().all(|v| side(v.p) >= 0.0) {
         return false;
@@ -158,6 +171,8 @@ pub(crate) fn clip_by_edge(
 pub(crate) struct Bound {
     pub(crate) centre: [f64; 2],
     pub(crate) radius2: f64,
+    /// The square root of `radius2`.
+    pub(crate) radius: f64,
 }
 
 impl Bound {
@@ -167,14 +182,23 @@ impl Bound {
             .iter()
             .fold((0.0, 0.0), |(x, y), w| (x + w.p[0], y + w.p[1]));
         let centre = [sx / k, sy / k];
+        // A plain comparison: f64::max's NaN handling doubled this loop's instructions (the
+        // same result on these finite values).
         let radius2 = v.iter().fold(0.0f64, |r, w| {
             let d = sub(w.p, centre);
-            r.max(d[0] * d[0] + d[1] * d[1])
+            let d2 = d[0] * d[0] + d[1] * d[1];
+            if d2 > r {
+                d2
+            } else {
+                r
+            }
         });
         // A hair more, so that round-off never skips a clip that cuts.
+        let radius2 = radius2 * (1.0 + 1e-9);
         Bound {
             centre,
-            radius2: radius2 * (1.0 + 1e-9),
+            radius2,
+            radius: radius2.sqrt(),
         }
     }
 }
@@ -238,28 +262,41 @@ pub fn clip_convex<R: Ring + ?Sized>(
         return false;
     }
     let rest = (1..m).map(|k| ((j0 + k) % m) as u32);
-    clip_through(a, b, rest, out, next)
+    clip_through(a, b, rest, (out, next), true)
 }
 
 /// Clips the first clip `out` by B's edges `edges` in turn (`next` is scratch space), then
 /// sets each vertex at its exact position; `false` where the overlap vanishes. The full clip
 /// and the windowed one (`convex_window.rs`) go on from their first clip by this one loop.
+/// With `bounded`, each edge's line is first held against the polygon's bounding circle (many
+/// edges far from the contact); without, every edge is tested vertex by vertex (edges chosen
+/// because they may cut: the circle would pass few of them by, at the cost of its update).
 pub(crate) fn clip_through<R: Ring + ?Sized>(
     a: &R,
     b: &R,
     edges: impl Iterator<Item = u32>,
-    out: &mut Vec<ClipVertex>,
-    next: &mut Vec<ClipVertex>,
+    (out, next): (&mut Vec<ClipVertex>, &mut Vec<ClipVertex>),
+    bounded: bool,
 ) -> bool {
-    let mut bound = Bound::of(out);
+    let mut bound = bounded.then(|| Bound::of(out));
     for j in edges {
-        if clip_by_edge(out, next, edge(b, j), j, bound) {
+        // An edge whose line is far from the clip changes nothing: told from its body-frame
+        // line where the ring knows it, without placing its corners.
+        if let Some(c) = bound.filter(|_| R::KNOWS_LINES) {
+            if b.clears(j, c.centre, c.radius) {
+                continue;
+            }
+        }
+        let placed_bound = bound.filter(|_| !R::KNOWS_LINES);
+        if clip_by_edge(out, next, edge(b, j), j, placed_bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();
                 return false;
             }
-            bound = Bound::of(out);
+            if bounded {
+                bound = Some(Bound::of(out));
+            }
         }
     }
     set_exact_positions(out, a, b);

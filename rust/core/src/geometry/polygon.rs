@@ -31,6 +31,10 @@ pub struct Polygon {
     /// about the centroid lies inside, so an edge whose line is far from a point seen from the
     /// centroid need not be tested (`convex_window.rs`).
     pub(crate) inradius: f64,
+    /// Each edge's line in the body frame: its outward unit normal and its distance from the
+    /// centroid along it, so that the windowed clip tells an edge far from the contact without
+    /// placing its corners (`convex_window.rs`).
+    pub(crate) edge_lines: Vec<[f64; 3]>,
 }
 
 impl Polygon {
@@ -94,14 +98,20 @@ impl Polygon {
             }
             polar.push(a);
         }
-        let inradius = (0..n)
+        let edge_lines: Vec<[f64; 3]> = (0..n)
             .map(|i| {
                 let (p, q) = (vertices[i], vertices[(i + 1) % n]);
-                cross(p, q) / (q - p).norm()
+                let len = (q - p).norm();
+                [(q.y - p.y) / len, (p.x - q.x) / len, cross(p, q) / len]
             })
+            .collect();
+        let inradius = edge_lines
+            .iter()
+            .map(|l| l[2])
             .fold(f64::INFINITY, f64::min);
         Polygon {
             inradius,
+            edge_lines,
             chain: ChainSums::new(&vertices),
             lowest_arm: lowest_arm(&vertices),
             vertices,
