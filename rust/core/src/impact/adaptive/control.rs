@@ -1,16 +1,14 @@
-//! The step control of the adaptive path: each state component's error scale, the limits of
-//! one impact's integration, the steps near the disc's root singularities (touch and
-//! separation), the step size controller and `err_est` from the accumulated local errors.
+//! The step control of the adaptive path on the plate: each state component's error scale, the
+//! limits of one impact's integration, and where the disc's force has its root singularities
+//! (touch and separation; the steps and error factors there are the rules', `rules.rs`).
 
 use super::law::Reference;
 use super::piece::{Event, Mode, Touch};
-use super::{
-    ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
-};
+use super::rules::{root_exponent, singular_cap, singular_factor, NEGLIGIBLE_PIECE};
+use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
 use crate::impact::record::TIMEOUT_CONTACT_TIMES;
-use crate::integrate::dopri::root_error_ratio;
 use crate::law::NormalForce;
 use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
@@ -68,21 +66,6 @@ pub(super) fn error_scales(
     scale
 }
 
-/// `err_est` from the local error estimates accumulated over the accepted steps (root sum of
-/// squares, components VX, VY, OM): the largest over e_N, e_T, e_kin and omega_out r / v.
-pub(super) fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
-    let v_in = init.vx.hypot(init.vy);
-    let e_t = if init.vx != 0.0 {
-        acc[VX] / init.vx.abs()
-    } else {
-        0.0
-    };
-    let e_n = acc[VY] / init.vy.abs();
-    let e_kin = acc[VX].hypot(acc[VY]) / v_in;
-    let spin = acc[OM] * r / v_in;
-    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin)
-}
-
 impl Reference<'_> {
     /// Whether the force in mode `m` has the disc's root singularities at touch and
     /// separation: a disc or sphere in contact under the area or Hertz law (the linear law
@@ -93,54 +76,24 @@ impl Reference<'_> {
         self.linear().is_none() && m.touch == Touch::Disc && m.clip_on
     }
 
-    /// The largest step near a point where a disc's force is not smooth (touch and
-    /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
-    /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
-    /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
-    /// first after touch, and towards separation the steps halve the time left until then.
-    /// `h_sing` is that step (`Limits::h_singular`).
+    /// The largest step in mode `m` at state `s` near a point where a disc's force is not
+    /// smooth ([`singular_cap`]); `h_sing` is `Limits::h_singular`.
     pub(super) fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, h_sing: f64) -> f64 {
         if !self.singular_force(m) {
             return f64::INFINITY;
         }
-        if fresh_touch {
-            return h_sing;
-        }
-        let depth = self.model.r - s[Y];
-        if s[VY] > 0.0 && depth > 0.0 {
-            (0.5 * depth / s[VY]).max(h_sing)
-        } else {
-            f64::INFINITY
-        }
+        singular_cap(fresh_touch, (self.model.r - s[Y], s[VY]), h_sing)
     }
 
-    /// The factor on the embedded error estimate of a step across or near a point where the
-    /// disc's force is not smooth (a step that starts within [`ROOT_REACH`] of its lengths
-    /// after touch, where the damping still grows like a root of the time; a step ending on
-    /// separation), which the embedded estimate understates: [`root_error_ratio`] for the
-    /// law's root (the area law's damping grows like t^(1/2), the Tsuji dashpot like
-    /// t^(1/4)), `rho` the time since touch in units of the step. 1 for every other step.
-    /// (Redoing the first four steps after touch as two halves and extrapolating their
-    /// difference, as before, cost 12 evaluations of the law per step, ~6 % of the disc's time
-    /// at tol 1e-6, and covered fewer of the grid's errors: >= 98.4 % against >= 99.9 %.)
+    /// The factor on the local error of a step in mode `m` starting `rho` of its lengths after
+    /// touch, or ending on `event` ([`singular_factor`]).
     pub(super) fn singular_factor(&self, m: &Mode, rho: Option<f64>, event: Option<Event>) -> f64 {
-        if !self.singular_force(m) {
-            return 1.0;
+        match root_exponent(&self.model.scene.normal_law) {
+            Some(p) if self.singular_force(m) => {
+                singular_factor(p, rho, event == Some(Event::Separate))
+            }
+            _ => 1.0,
         }
-        let p = match self.model.scene.normal_law {
-            NormalLaw::Hertz { .. } => 0.25,
-            _ => 0.5,
-        };
-        // Beyond a step's length from touch the embedded estimate no longer understates.
-        let at_touch = rho
-            .filter(|&rho| rho < ROOT_REACH)
-            .map_or(1.0, |rho| root_error_ratio(p, rho, false));
-        let at_separation = if event == Some(Event::Separate) {
-            root_error_ratio(p, 0.0, true)
-        } else {
-            1.0
-        };
-        at_touch.max(at_separation)
     }
 }
 
@@ -151,24 +104,6 @@ fn summed_polygon(model: &Model) -> Option<&crate::geometry::Polygon> {
     match &model.scene.shape {
         Shape::Polygon(p) if adaptive && model.scene.normal_law == NormalLaw::Area => Some(p),
         _ => None,
-    }
-}
-
-/// Steps from touch, in units of the step, beyond which [`root_error_ratio`] is 1 (1.1 at
-/// one step, 0.5 at two).
-const ROOT_REACH: f64 = 2.0;
-
-/// The step size controller's factor for a step with scaled error `err` (> 0; rejected above
-/// 1): 0.9 err^(-1/5) within [0.2, 5]. Below 1.8e-4 that is 5 without the power (0.9
-/// (1.8e-4)^(-1/5) = 5.04), which libm's pow, called at every step, made 4 % of a profile of
-/// the adaptive path.
-pub(crate) fn step_factor(err: f64) -> f64 {
-    if err < 1.8e-4 {
-        5.0
-    } else {
-        // In single precision: a step factor needs a few digits, and f64's powf was 6 % of the
-        // disc's time (one per attempted step).
-        (0.9 * f64::from((err as f32).powf(-0.2))).clamp(0.2, 5.0)
     }
 }
 
@@ -235,7 +170,7 @@ impl<'a> Reference<'a> {
                 model,
                 reference_contact_steps(model, init, depth_est, h_max, opts.tol),
             ),
-            tiny: 1e-9 * t_est,
+            tiny: NEGLIGIBLE_PIECE * t_est,
             n_corners: verts.len(),
             energy_in,
         };

@@ -38,6 +38,7 @@ mod extremes;
 mod law;
 mod mode;
 mod piece;
+mod rules;
 mod run;
 mod step;
 mod switches;
@@ -48,7 +49,7 @@ use crate::impact::record::{estimate_max_depth, Record, Trace};
 use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
-pub(crate) use control::step_factor;
+pub(crate) use rules::step_factor;
 pub(crate) use run::integrate;
 pub(crate) use switches::{sampled_first_switch, TANGENTIAL_PARTS};
 
