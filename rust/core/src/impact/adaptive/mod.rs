@@ -49,7 +49,10 @@ use crate::impact::record::{estimate_max_depth, Record, Trace};
 use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
-pub(crate) use rules::step_factor;
+pub(crate) use rules::{
+    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, verdict,
+    Chatter, ErrorSum, SwitchKind, Verdict, NEGLIGIBLE_PIECE,
+};
 pub(crate) use run::integrate;
 pub(crate) use switches::{sampled_first_switch, TANGENTIAL_PARTS};
 

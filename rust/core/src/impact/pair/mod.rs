@@ -23,6 +23,7 @@ use crate::model::{Initial, Integrator, Model, NormalLaw, Pair};
 
 mod adaptive;
 mod depth;
+mod mode;
 mod ode;
 mod switches;
 

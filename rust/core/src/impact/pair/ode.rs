@@ -2,7 +2,6 @@
 //! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
 
 use crate::geometry::pair::{HeldSprings, PairGeometry};
-use crate::impact::adaptive::ERR_EST_FACTOR;
 use crate::law::contact::NormalForce;
 use crate::law::pair::{dot, PairForces};
 use crate::law::StickState;
@@ -23,23 +22,6 @@ pub(super) const XI: usize = 8;
 pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
 pub(super) const WD: usize = 11;
-
-/// `err_est` from the local errors `acc` of g and the spins accumulated in quadrature: the
-/// largest over e_N, e_T, e_kin and both spins in units of v / r, times the plate's factor
-/// (measured there: [`ERR_EST_FACTOR`]).
-pub(super) fn error_estimate(acc: &State, init: &Initial, pair: &Pair) -> f64 {
-    let v = init.vx.hypot(init.vy);
-    let e_t = if init.vx != 0.0 {
-        acc[GX] / init.vx.abs()
-    } else {
-        0.0
-    };
-    let e_n = acc[GY] / init.vy.abs();
-    let e_kin = acc[GX].hypot(acc[GY]) / v;
-    let spin1 = acc[W1] * pair.particle.r / v;
-    let spin2 = acc[W2] * pair.r2 / v;
-    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin1).max(spin2)
-}
 
 /// The error scale of each state component, from the impact's own scales (as the plate's
 /// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what

@@ -8,19 +8,35 @@ use crate::impact::adaptive::{sampled_first_switch, TANGENTIAL_PARTS};
 use crate::integrate::dopri::DenseStep;
 use crate::numerics::roots;
 
-/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event);
-/// `chattering`: the switches that chatter (slip -> stick, clip off) are not looked for.
+/// The switches a step does not look for, where they chattered (the adaptive rules'
+/// remedies, `Chatter`).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Ignored {
+    /// Stick -> slip and slip -> stick.
+    pub(super) tangential: bool,
+    /// The clip switching off (the force back on).
+    pub(super) clip: bool,
+    /// Every switch (so many pieces of zero length in a row).
+    pub(super) all: bool,
+}
+
+/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event),
+/// the `ignored` switches left out.
 pub(super) fn first_switch<G: PairGeometry>(
     ode: &PairOde<'_, G>,
     m: &Mode,
     step: &DenseStep<NS, NS>,
-    chattering: bool,
+    ignored: Ignored,
 ) -> Option<(f64, Event)> {
+    if ignored.all {
+        return None;
+    }
     let g = |ev: Event, th: f64| ode.event_value(m, ev, &step.at(th));
     let mut first: Option<(f64, Event)> = None;
     let mut parting = None;
     for ev in ode.candidates(m) {
-        if chattering && matches!(ev, Event::ToStick | Event::ClipOff) {
+        let tangential = matches!(ev, Event::ToSlip | Event::ToStick);
+        if (ignored.tangential && tangential) || (ignored.clip && ev == Event::ClipOff) {
             continue;
         }
         let found = if matches!(ev, Event::ToSlip | Event::ToStick) {
