@@ -4,11 +4,10 @@
 
 use super::law::Reference;
 use super::piece::{Event, Mode, Touch};
-use super::rules::{root_exponent, singular_cap, singular_factor, NEGLIGIBLE_PIECE};
+use super::rules::{root_exponent, singular_cap, singular_factor, Limits};
 use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
-use crate::impact::record::TIMEOUT_CONTACT_TIMES;
 use crate::law::NormalForce;
 use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
@@ -107,40 +106,14 @@ fn summed_polygon(model: &Model) -> Option<&crate::geometry::Polygon> {
     }
 }
 
-/// What bounds one impact's integration, fixed at its start.
-pub(super) struct Limits {
-    /// The largest step.
-    pub(super) h_max: f64,
-    /// The estimated contact time.
-    pub(super) t_est: f64,
-    /// The largest step across a point where the disc's force is not smooth, t_est tol^(2/3)
-    /// (see `Reference::singular_cap`), fixed per impact.
-    pub(super) h_singular: f64,
-    /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
-    /// free flight is jumped over and does not count, as for the fixed steps).
-    pub(super) t_end: f64,
-    /// The step budget (attempts, rejected steps included): steps may be much shorter than
-    /// h_max while a turning polygon brings corner after corner to the plate (counted in
-    /// N_c), but an explicit method crawls through a damper much stiffer than the contact (a
-    /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
-    /// out.
-    pub(super) max_steps: u64,
-    /// Pieces shorter than this are negligible (for chattering).
-    pub(super) tiny: f64,
-    /// The polygon's corners (0 for a disc or sphere).
-    pub(super) n_corners: usize,
-    /// Kinetic energy before the impact.
-    pub(super) energy_in: f64,
-}
-
 impl<'a> Reference<'a> {
-    /// The ODE of one impact and the limits of its integration.
+    /// The ODE of one impact, the limits of its integration and the kinetic energy before it.
     pub(super) fn for_impact(
         model: &'a Model,
         init: &Initial,
         depth_est: f64,
         opts: &ReferenceOptions,
-    ) -> (Self, Limits) {
+    ) -> (Self, Limits, f64) {
         let r = model.r;
         let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
         let t_est = PI * depth_est / init.vy.abs();
@@ -161,19 +134,11 @@ impl<'a> Reference<'a> {
             inv_inertia: 1.0 / model.inertia,
             summed: summed_polygon(model),
         };
-        let lim = Limits {
-            h_max,
-            t_est,
-            h_singular: t_est * opts.tol.powf(2.0 / 3.0),
-            t_end: TIMEOUT_CONTACT_TIMES * t_est,
-            max_steps: budget_for(
-                model,
-                reference_contact_steps(model, init, depth_est, h_max, opts.tol),
-            ),
-            tiny: NEGLIGIBLE_PIECE * t_est,
-            n_corners: verts.len(),
-            energy_in,
-        };
-        (ode, lim)
+        let max_steps = budget_for(
+            model,
+            reference_contact_steps(model, init, depth_est, h_max, opts.tol),
+        );
+        let lim = Limits::new(t_est, h_max, opts.tol, max_steps);
+        (ode, lim, energy_in)
     }
 }

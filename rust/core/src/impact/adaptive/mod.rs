@@ -49,12 +49,15 @@ use crate::impact::record::{estimate_max_depth, Record, Trace};
 use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
+pub(crate) use extremes::turning_point;
 pub(crate) use rules::{
     error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, verdict,
-    Chatter, ErrorSum, SwitchKind, Verdict, NEGLIGIBLE_PIECE,
+    Chatter, ErrorSum, Limits, SwitchKind, Verdict,
 };
 pub(crate) use run::integrate;
-pub(crate) use switches::{sampled_first_switch, TANGENTIAL_PARTS};
+pub(crate) use switches::{
+    first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
+};
 
 /// Settings of the reference integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -5,8 +5,64 @@
 //! count of chattering switches with its constants.
 
 use super::ERR_EST_FACTOR;
+use crate::impact::record::{StopReason, TIMEOUT_CONTACT_TIMES};
 use crate::integrate::dopri::{root_error_ratio, DenseStep};
 use crate::model::{Initial, NormalLaw};
+
+/// What bounds one impact's integration, fixed at its start, on the plate and on a pair.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Limits {
+    /// The largest step.
+    pub(crate) h_max: f64,
+    /// The estimated contact time.
+    pub(crate) t_est: f64,
+    /// The largest step across a point where the force is not smooth, t_est tol^(2/3)
+    /// ([`singular_cap`]), fixed per impact.
+    pub(crate) h_singular: f64,
+    /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
+    /// free flight is jumped over and does not count, as for the fixed steps).
+    pub(crate) t_end: f64,
+    /// The step budget (attempts, rejected steps included): steps may be much shorter than
+    /// h_max while a turning polygon brings corner after corner to the plate (counted in
+    /// N_c), but an explicit method crawls through a damper much stiffer than the contact (a
+    /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
+    /// out.
+    pub(crate) max_steps: u64,
+    /// Pieces shorter than this are negligible (for chattering, [`Chatter::count`]).
+    pub(crate) tiny: f64,
+}
+
+impl Limits {
+    /// The limits of an impact whose contact is estimated to last `t_est`, with largest step
+    /// `h_max`, local tolerance `tol` and step budget `max_steps`.
+    pub(crate) fn new(t_est: f64, h_max: f64, tol: f64, max_steps: u64) -> Self {
+        Limits {
+            h_max,
+            t_est,
+            h_singular: t_est * tol.powf(2.0 / 3.0),
+            t_end: TIMEOUT_CONTACT_TIMES * t_est,
+            max_steps,
+            tiny: NEGLIGIBLE_PIECE * t_est,
+        }
+    }
+
+    /// The smallest step the controller tries ([`verdict`]).
+    pub(crate) fn h_min(&self) -> f64 {
+        1e-13 * self.t_est
+    }
+
+    /// The budget that is spent after `attempts` attempted steps and `contact_time` in
+    /// contact, if one is.
+    pub(crate) fn budget_spent(&self, attempts: u64, contact_time: f64) -> Option<StopReason> {
+        if attempts >= self.max_steps {
+            Some(StopReason::StepBudget)
+        } else if contact_time >= self.t_end {
+            Some(StopReason::ContactTimeBudget)
+        } else {
+            None
+        }
+    }
+}
 
 /// The step size controller's factor for a step with scaled error `err` (> 0; rejected above
 /// 1): 0.9 err^(-1/5) within [0.2, 5]. Below 1.8e-4 that is 5 without the power (0.9
@@ -195,7 +251,7 @@ const MAX_ZERO_PIECES: u32 = 64;
 
 /// Pieces shorter than this, in units of the estimated contact time, are negligible for the
 /// chatter remedies whatever the precision of their switch.
-pub(crate) const NEGLIGIBLE_PIECE: f64 = 1e-9;
+const NEGLIGIBLE_PIECE: f64 = 1e-9;
 
 /// The kinds of switch whose chattering has a remedy.
 #[derive(Debug, Clone, Copy, PartialEq)]

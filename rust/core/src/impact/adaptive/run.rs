@@ -1,12 +1,11 @@
 //! The loop of one impact: step, reject or accept, end the piece at the first switch, handle
 //! chattering switches, and build the record.
 
-use super::control::Limits;
 use super::extremes::track_extremes;
 use super::law::{Eval, Reference};
 use super::mode::{apply, start_slip};
 use super::piece::{Event, Mode, Tally, Tan, Touch};
-use super::rules::{error_estimate, verdict, Chatter, ErrorSum, SwitchKind, Verdict};
+use super::rules::{error_estimate, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict};
 use super::step::Step;
 use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, Y};
 use crate::cancel::Cancel;
@@ -56,6 +55,8 @@ struct Run<'a, 't> {
     ode: Reference<'a>,
     init: &'a Initial,
     lim: Limits,
+    /// Kinetic energy before the impact.
+    energy_in: f64,
     trace: Option<&'t mut Trace>,
     /// The ODE's state, its mode, and the first stage of the next step (FSAL).
     s: State,
@@ -90,7 +91,7 @@ impl<'a, 't> Run<'a, 't> {
         opts: &ReferenceOptions,
         mut trace: Option<&'t mut Trace>,
     ) -> Self {
-        let (ode, lim) = Reference::for_impact(model, init, depth_est, opts);
+        let (ode, lim, energy_in) = Reference::for_impact(model, init, depth_est, opts);
         let shape = &model.scene.shape;
         let mut s: State = [0.0; NS];
         s[Y] = shape.touch_height(init.phi0);
@@ -115,6 +116,7 @@ impl<'a, 't> Run<'a, 't> {
             ode,
             init,
             lim,
+            energy_in,
             trace,
             s,
             mode,
@@ -144,13 +146,7 @@ impl<'a, 't> Run<'a, 't> {
 
     /// The budget that is spent, if one is.
     fn budget_spent(&self) -> Option<StopReason> {
-        if self.attempts >= self.lim.max_steps {
-            Some(StopReason::StepBudget)
-        } else if self.contact_time() >= self.lim.t_end {
-            Some(StopReason::ContactTimeBudget)
-        } else {
-            None
-        }
+        self.lim.budget_spent(self.attempts, self.contact_time())
     }
 
     /// The time spent in contact so far, the ongoing contact included.
@@ -239,11 +235,12 @@ impl<'a, 't> Run<'a, 't> {
             self.fresh_touch,
             lim.h_singular,
         ));
-        if lim.n_corners > 0 && s[OM] != 0.0 {
+        let n_corners = self.ode.verts.len();
+        if n_corners > 0 && s[OM] != 0.0 {
             // A turning polygon brings corners to the plate: step finely enough (a quarter of
             // the angle between corners) that no corner touches and leaves within one step,
             // in flight (a missed re-contact) and in contact (a stale set of submerged corners).
-            h = h.min(0.25 * (2.0 * PI / lim.n_corners as f64) / s[OM].abs());
+            h = h.min(0.25 * (2.0 * PI / n_corners as f64) / s[OM].abs());
         }
         h
     }
@@ -255,7 +252,7 @@ impl<'a, 't> Run<'a, 't> {
         self.h = h;
         let err = self.ode.dp_step(&self.mode, &self.s, &self.k1, h, step);
         self.attempts += 1;
-        let h_min = 1e-13 * self.lim.t_est;
+        let h_min = self.lim.h_min();
         let h_next = match verdict(err, h, h_min) {
             Verdict::Accept { h_next } => h_next,
             Verdict::Reject { h_retry } => {
@@ -471,7 +468,7 @@ impl<'a, 't> Run<'a, 't> {
             max_depth: tally.max_depth,
             max_area: tally.max_area,
             slip_events: tally.slip_events,
-            energy_in: self.lim.energy_in,
+            energy_in: self.energy_in,
             work_normal: s[W_EL] + s[W_D],
             work_damping: s[W_D],
             work_friction: s[W_T],

@@ -15,28 +15,22 @@
 use super::ode::{
     error_scales, Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y,
 };
-use super::switches::{first_switch, Ignored};
+use super::switches::{first_switch, Ignored, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
-    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, verdict,
-    Chatter, ErrorSum, SwitchKind, Verdict, NEGLIGIBLE_PIECE,
+    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, turning_point,
+    verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
 };
 use crate::impact::flight::{self, Approach, Jump};
-use crate::impact::record::{
-    separation_normal, Bodies, Ending, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES,
-};
+use crate::impact::record::{separation_normal, Bodies, Ending, Record, StopReason, Trace};
 use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
-use crate::numerics::roots;
 use std::f64::consts::PI;
-
-/// To what fraction of its step a switch is located (Brent's method, `switches.rs`).
-const SWITCH_PRECISION: f64 = 1e-12;
 
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
 /// estimated largest overlap `depth_est`); `tol` the local tolerance per step.
@@ -48,8 +42,7 @@ pub(super) fn integrate<G: PairGeometry>(
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let mut run = Run::new(pair, init, (geometry, start), depth_est, tol);
-    run.rec.step_budget = max_steps;
+    let mut run = Run::new(pair, init, (geometry, start), (depth_est, tol, max_steps));
     let mut trace = trace;
     if let Some(tr) = trace.as_deref_mut() {
         run.push(tr);
@@ -59,11 +52,8 @@ pub(super) fn integrate<G: PairGeometry>(
     let stride = poll_stride(pair, 16);
     let stop = loop {
         cancel.poll_every(run.attempts, stride)?;
-        if run.attempts >= max_steps {
-            break StopReason::StepBudget;
-        }
-        if run.contact_elapsed() > run.t_end {
-            break StopReason::ContactTimeBudget;
+        if let Some(stop) = run.lim.budget_spent(run.attempts, run.contact_elapsed()) {
+            break stop;
         }
         let accepted = match run.attempt(&mut step) {
             Ok(accepted) => accepted,
@@ -90,21 +80,16 @@ pub(super) struct Run<'a, G> {
     pub(super) k1: State,
     pub(super) t: f64,
     pub(super) h: f64,
-    pub(super) h_max: f64,
-    /// The smallest step (`verdict`).
-    pub(super) h_min: f64,
-    /// The largest step near touch, where the damping grows like a root of the time.
-    pub(super) h_singular: f64,
-    pub(super) t_end: f64,
+    /// The largest and smallest steps, the budgets and the negligible piece.
+    pub(super) lim: Limits,
     /// 1 / (tol x scale) of each component.
     pub(super) weight: State,
     /// Local errors accumulated in quadrature (`err_est`).
     pub(super) acc: ErrorSum<NS>,
     pub(super) attempts: u64,
     pub(super) steps: u64,
-    /// Consecutive negligible and zero-length pieces, and the negligible length (s).
+    /// Consecutive negligible and zero-length pieces.
     pub(super) chatter: Chatter,
-    pub(super) tiny: f64,
     /// The switches ignored for one step where they chattered (the rules' remedies).
     pub(super) ignored: Ignored,
     /// No step taken since the last touch (`singular_cap`).
@@ -132,8 +117,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         pair: &'a Pair,
         init: &Initial,
         (geometry, start): (G, Start),
-        depth_est: f64,
-        tol: f64,
+        (depth_est, tol, max_steps): (f64, f64, u64),
     ) -> Self {
         let law = &pair.law;
         let speed = init.vx.hypot(init.vy);
@@ -176,7 +160,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let weight =
             error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
         let k1 = ode.touch_derivative(&mode, &s, &probe);
-        let h_max = law.scene.dt_factor * law.t_ref;
+        let lim = Limits::new(t_est, law.scene.dt_factor * law.t_ref, tol, max_steps);
         Run {
             ode,
             init: *init,
@@ -184,17 +168,13 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             s,
             k1,
             t: 0.0,
-            h: h_max.min(t_est * tol.powf(2.0 / 3.0)),
-            h_max,
-            h_min: 1e-13 * t_est,
-            h_singular: t_est * tol.powf(2.0 / 3.0),
-            t_end: TIMEOUT_CONTACT_TIMES * t_est,
+            h: lim.h_max.min(lim.h_singular),
+            lim,
             weight,
             acc: ErrorSum::default(),
             attempts: 0,
             steps: 0,
             chatter: Chatter::default(),
-            tiny: NEGLIGIBLE_PIECE * t_est,
             ignored: Ignored::default(),
             fresh_touch: true,
             separated: false,
@@ -208,6 +188,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             rec: Record {
                 contacts: 1,
                 energy_in,
+                step_budget: max_steps,
                 ..Record::default()
             },
         }
@@ -222,7 +203,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         step.take(&self.s, &self.k1, h, |_, y, k| {
             ode.eval(&mode, y, k);
         });
-        let h_next = match verdict(self.scaled_norm(&step.err), h, self.h_min) {
+        let h_next = match verdict(self.scaled_norm(&step.err), h, self.lim.h_min()) {
             Verdict::Accept { h_next } => h_next,
             Verdict::Reject { h_retry } => {
                 self.h = h_retry;
@@ -242,7 +223,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let factor = self.singular_factor(theta * h, event);
         self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
         let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
-        self.chatter.count(switch, (theta * h, h), self.tiny);
+        self.chatter.count(switch, (theta * h, h), self.lim.tiny);
         self.track_extremes(step, theta);
         self.s = s_new;
         self.keep_angular_momentum();
@@ -321,12 +302,12 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// The step to take: the controller's, at most the largest; near touch and separation at
     /// most the rules' ([`singular_cap`]).
     fn capped_step(&self) -> f64 {
-        let h = self.h.min(self.h_max);
+        let h = self.h.min(self.lim.h_max);
         if self.singular_mode() {
             h.min(singular_cap(
                 self.fresh_touch,
                 self.ode.opening(&self.s),
-                self.h_singular,
+                self.lim.h_singular,
             ))
         } else {
             h
@@ -385,8 +366,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let geometry = &self.ode.geometry;
         let at = |t: f64| -> [f64; 4] { std::array::from_fn(|i| q[i] + v[i] * t) };
         let gap = |t: f64| -geometry.signed_depth(&at(t));
-        let left = self.rec.step_budget.saturating_sub(self.attempts);
-        let (jump, advances) = flight::jump(gap, approach, self.h_max, left);
+        let left = self.lim.max_steps.saturating_sub(self.attempts);
+        let (jump, advances) = flight::jump(gap, approach, self.lim.h_max, left);
         let t_jump = match jump {
             Jump::Stay => return,
             Jump::To(t) => t,
@@ -410,11 +391,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             s[X] * s[GX] + s[Y] * s[GY]
         };
         let (a, b) = (g_n(0.0), g_n(theta));
-        let mut at = vec![theta];
-        if a < 0.0 && b > 0.0 {
-            at.push(roots::bracket(g_n, (0.0, a), (theta, b), 1e-10 * theta).0);
-        }
-        for th in at {
+        let at = [Some(theta), turning_point(g_n, a, (theta, b))];
+        for th in at.into_iter().flatten() {
             let e = self.ode.eval_new(&self.mode, &step.at(th)).1;
             self.rec.max_depth = self.rec.max_depth.max(e.depth);
             self.rec.max_area = self.rec.max_area.max(e.area);
