@@ -4,7 +4,9 @@
 
 use super::law::Reference;
 use super::piece::{Event, Mode, Touch};
-use super::rules::{root_exponent, singular_cap, singular_factor, Limits};
+use super::rules::{
+    root_exponent, singular_cap, singular_factor, spring_scale, velocity_scales, Limits,
+};
 use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
@@ -12,15 +14,11 @@ use crate::law::NormalForce;
 use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
 
-/// Smallest error scale of a velocity component, relative to the impact's speed.
-const SCALE_FLOOR: f64 = 1e-3;
-
 /// The error scale of each state component, from the impact's own scales (so that a scene
 /// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
-/// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
-/// spin; the speed where a component is zero), the positions' what those velocities cover
-/// in t_c / pi, the spring's the elongation that holds as much energy as the contact point's
-/// velocity scale (see below), the works' the energy.
+/// the incident ones the outputs are relative to ([`velocity_scales`]), the positions' what
+/// those velocities cover in t_c / pi, the spring's the elongation that holds as much energy
+/// as the contact point's velocity scale ([`spring_scale`]), the works' the energy.
 pub(super) fn error_scales(
     model: &Model,
     init: &Initial,
@@ -28,37 +26,16 @@ pub(super) fn error_scales(
     t_est: f64,
     depth_est: f64,
 ) -> State {
-    let r = model.r;
-    let v_in = init.vx.hypot(init.vy);
-    // Floored at 1e-3 of the speed (spin included): a component far below the others (a
-    // grazing impact's v_y, a spinning body's v_x) cannot be followed to `tol` of itself in
-    // double precision, and asking for it costs millions of steps (a triangle at 0.01 deg and
-    // 1e4 deg/s took 3e7). Over the study's grid (theta >= 4 deg) no floor is reached.
-    let or_speed = |x: f64| x.clamp(SCALE_FLOOR * speed, speed);
+    let [vx, vy, v_in] = velocity_scales(init, speed);
     let mut scale = [0.0; NS];
-    scale[VX] = or_speed(init.vx.abs());
-    scale[VY] = or_speed(init.vy.abs());
-    scale[OM] = or_speed(v_in) / r;
+    scale[VX] = vx;
+    scale[VY] = vy;
+    scale[OM] = v_in / model.r;
     let t_c = t_est / PI;
     scale[X] = scale[VX] * t_c;
     scale[Y] = scale[VY] * t_c;
     scale[PHI] = scale[OM] * t_c;
-    // In stick the spring and the contact point's motion are one oscillator: an error of xi
-    // is worth one of the tangential velocity when their energies match, (1/2) k_t xi^2 =
-    // (1/2) m_t v^2, with m_t = 1 / (1/m + r^2/I) the mass the spring moves at the contact
-    // point and k_t its stiffness at the estimated largest depth. (The force that moves v_x in
-    // t_c, the scale before, is 3 / (omega_t t_c) ~ 1/6 of that on the paper's disc: it set 90
-    // % of the steps in stick, finer than any output needed.) Mindlin's xi kept as the force
-    // (section 14.4) is the elongation times k_t = rate.
-    let m_t = 1.0 / (1.0 / model.mass + r * r / model.inertia);
-    let (k_xi, rate, _) = model.spring(depth_est);
-    let k_t = k_xi * rate;
-    // Without a spring (k_t = 0) its elongation does not act: no error of it counts.
-    scale[XI] = if k_t > 0.0 {
-        scale[VX] * (m_t / k_t).sqrt() * rate
-    } else {
-        f64::INFINITY
-    };
+    scale[XI] = spring_scale(model, scale[VX], depth_est);
     scale[W_EL] = energy;
     scale[W_D] = energy;
     scale[W_T] = energy;

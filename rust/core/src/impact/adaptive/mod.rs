@@ -51,8 +51,8 @@ use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use extremes::turning_point;
 pub(crate) use rules::{
-    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, verdict,
-    Chatter, ErrorSum, Limits, SwitchKind, Verdict,
+    error_estimate, root_exponent, singular_cap, singular_factor, spring_scale, state_at_switch,
+    velocity_scales, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
 };
 pub(crate) use run::integrate;
 pub(crate) use switches::{

@@ -121,6 +121,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     ) -> Self {
         let law = &pair.law;
         let speed = init.vx.hypot(init.vy);
+        // The speed the error scales are floored by, spins included (the plate's).
+        let spun = speed + pair.particle.r * init.omega.abs() + pair.r2 * init.partner_omega.abs();
         let t_est = PI * depth_est / init.vy.abs();
         let mut ode = PairOde {
             pair,
@@ -158,7 +160,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         (mode.tan, probe) = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
         let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
         let weight =
-            error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
+            error_scales(pair, init, (spun, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
         let k1 = ode.touch_derivative(&mode, &s, &probe);
         let lim = Limits::new(t_est, law.scene.dt_factor * law.t_ref, tol, max_steps);
         Run {

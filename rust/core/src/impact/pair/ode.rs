@@ -2,6 +2,7 @@
 //! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
 
 use crate::geometry::pair::{HeldSprings, PairGeometry};
+use crate::impact::adaptive::{spring_scale, velocity_scales};
 use crate::law::contact::NormalForce;
 use crate::law::pair::{dot, PairForces};
 use crate::law::StickState;
@@ -23,10 +24,10 @@ pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
 pub(super) const WD: usize = 11;
 
-/// The error scale of each state component, from the impact's own scales (as the plate's
-/// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what
-/// they cover in t_c / pi; the spring the elongation holding the contact point's energy;
-/// works the energy).
+/// The error scale of each state component, from the impact's own scales, by the plate's rules
+/// (`velocity_scales`, `spring_scale`): the velocities' the incident ones, floored at 1e-3 of the
+/// impact's `speed`; positions what they cover in t_c / pi; the spring the elongation holding the
+/// contact point's energy; works the energy.
 pub(super) fn error_scales(
     pair: &Pair,
     init: &Initial,
@@ -35,18 +36,8 @@ pub(super) fn error_scales(
     depth: f64,
 ) -> State {
     let (r1, r2) = (pair.particle.r, pair.r2);
-    let floor = |x: f64| x.clamp(1e-3 * speed, speed);
     let t_c = t_est / PI;
-    let (vx, vy, spin) = (floor(init.vx.abs()), floor(init.vy.abs()), floor(speed));
-    let law = &pair.law;
-    let m_t = 1.0 / (1.0 / law.mass + law.r * law.r / law.inertia);
-    let (k_xi, rate, _) = law.spring(depth);
-    let k_t = k_xi * rate;
-    let xi = if k_t > 0.0 {
-        vx * (m_t / k_t).sqrt() * rate
-    } else {
-        f64::INFINITY
-    };
+    let [vx, vy, spin] = velocity_scales(init, speed);
     [
         vx * t_c,
         vy * t_c,
@@ -56,7 +47,7 @@ pub(super) fn error_scales(
         spin / r1,
         spin / r2 * t_c,
         spin / r2,
-        xi,
+        spring_scale(&pair.law, vx, depth),
         energy,
         energy,
         energy,
