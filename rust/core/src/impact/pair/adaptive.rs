@@ -216,24 +216,30 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let ignored = std::mem::take(&mut self.ignored);
         let first = first_switch(&self.ode, &self.mode, step, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
-        let (s_new, err_taken) = if theta < 1.0 {
-            self.state_at_switch(step, theta)
-        } else {
+        let (s_new, err_taken) = if theta >= 1.0 {
             (step.y1, step.err)
+        } else if theta * h <= 0.0 {
+            (self.s, [0.0; NS])
+        } else {
+            // As on the plate, a switch inside the step counts against the budget as a step's
+            // work, whether the step is redone to it or not.
+            self.attempts += 1;
+            self.state_at_switch(step, theta)
         };
         let event = first.map(|(_, ev)| ev);
         let factor = self.singular_factor(theta * h, event);
         self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
         let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
         self.chatter.count(switch, (theta * h, h), self.lim.tiny);
-        self.track_extremes(step, theta);
+        if theta * h > 0.0 {
+            // Pieces of zero length are no steps (the plate's count).
+            self.track_extremes(step, theta);
+            self.fresh_touch = false;
+            self.steps += 1;
+        }
         self.s = s_new;
         self.keep_angular_momentum();
         self.t += theta * h;
-        self.steps += 1;
-        if theta * h > 0.0 {
-            self.fresh_touch = false;
-        }
         if ignored.clip {
             self.end_clip_hold();
         }
