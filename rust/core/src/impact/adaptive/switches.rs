@@ -260,14 +260,17 @@ pub(crate) fn locate_switch(
     roots::bracket(g, (lo, g_lo), (hi, g_hi), precision)
 }
 
+/// A fraction of a step where an event function is sampled, with its value there when known.
+pub(crate) type Sample = (f64, Option<f64>);
+
 /// The first of the increasing fractions `at` of a step (each with the event function's value
 /// where already known) where `g` is positive, and the sample before it (the step's start,
 /// value unknown, before the first): the bracket of the first switch among the samples, each
 /// value computed once.
 pub(crate) fn first_positive_sample(
     g: impl Fn(f64) -> f64,
-    at: impl IntoIterator<Item = (f64, Option<f64>)>,
-) -> Option<((f64, Option<f64>), (f64, f64))> {
+    at: impl IntoIterator<Item = Sample>,
+) -> Option<(Sample, (f64, f64))> {
     let mut before = (0.0, None);
     for (th, known) in at {
         let value = known.unwrap_or_else(|| g(th));

@@ -12,9 +12,8 @@
 //! spring's trial force would move inside the cone, s dF_trial/dt < mu dF_n/dt (both rates
 //! taken along the motion by a forward difference).
 
-use super::ode::{
-    error_scales, Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y,
-};
+use super::law::{error_scales, PairOde};
+use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
 use super::switches::{first_switch, Ignored, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;

@@ -4,7 +4,7 @@
 //! that follow from the state rather than from an event function.
 
 use super::adaptive::Run;
-use super::ode::{Event, Mode, Tan, X, XI, Y};
+use super::piece::{Event, Mode, Tan, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
 
 impl<G: PairGeometry> Run<'_, G> {

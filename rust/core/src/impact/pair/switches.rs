@@ -2,7 +2,8 @@
 //! switch inside an accepted step, located on the step's dense output by Brent's method; stick
 //! and slip also sampled inside the step, by the plate's rule.
 
-use super::ode::{Event, Mode, PairOde, NS};
+use super::law::PairOde;
+use super::piece::{Event, Mode, NS};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
