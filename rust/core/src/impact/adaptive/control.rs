@@ -1,29 +1,24 @@
-//! The step control of the adaptive path: each state component's error scale, the limits of
-//! one impact's integration, the steps near the disc's root singularities (touch and
-//! separation), the step size controller and `err_est` from the accumulated local errors.
+//! The step control of the adaptive path on the plate: each state component's error scale, the
+//! limits of one impact's integration, and where the disc's force has its root singularities
+//! (touch and separation; the steps and error factors there are the rules', `rules.rs`).
 
 use super::law::Reference;
 use super::piece::{Event, Mode, Touch};
-use super::{
-    ReferenceOptions, State, ERR_EST_FACTOR, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y,
+use super::rules::{
+    root_exponent, singular_cap, singular_factor, spring_scale, velocity_scales, Limits,
 };
+use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
-use crate::impact::record::TIMEOUT_CONTACT_TIMES;
-use crate::integrate::dopri::root_error_ratio;
 use crate::law::NormalForce;
 use crate::model::{Initial, Integrator, Model, NormalLaw};
 use std::f64::consts::PI;
 
-/// Smallest error scale of a velocity component, relative to the impact's speed.
-const SCALE_FLOOR: f64 = 1e-3;
-
 /// The error scale of each state component, from the impact's own scales (so that a scene
 /// rescaled with its dimensionless groups fixed takes the same steps): the velocities' are
-/// the incident ones the outputs are relative to (|vx| for e_T, |vy| for e_N, v / r for the
-/// spin; the speed where a component is zero), the positions' what those velocities cover
-/// in t_c / pi, the spring's the elongation that holds as much energy as the contact point's
-/// velocity scale (see below), the works' the energy.
+/// the incident ones the outputs are relative to ([`velocity_scales`]), the positions' what
+/// those velocities cover in t_c / pi, the spring's the elongation that holds as much energy
+/// as the contact point's velocity scale ([`spring_scale`]), the works' the energy.
 pub(super) fn error_scales(
     model: &Model,
     init: &Initial,
@@ -31,56 +26,20 @@ pub(super) fn error_scales(
     t_est: f64,
     depth_est: f64,
 ) -> State {
-    let r = model.r;
-    let v_in = init.vx.hypot(init.vy);
-    // Floored at 1e-3 of the speed (spin included): a component far below the others (a
-    // grazing impact's v_y, a spinning body's v_x) cannot be followed to `tol` of itself in
-    // double precision, and asking for it costs millions of steps (a triangle at 0.01 deg and
-    // 1e4 deg/s took 3e7). Over the study's grid (theta >= 4 deg) no floor is reached.
-    let or_speed = |x: f64| x.clamp(SCALE_FLOOR * speed, speed);
+    let [vx, vy, v_in] = velocity_scales(init, speed);
     let mut scale = [0.0; NS];
-    scale[VX] = or_speed(init.vx.abs());
-    scale[VY] = or_speed(init.vy.abs());
-    scale[OM] = or_speed(v_in) / r;
+    scale[VX] = vx;
+    scale[VY] = vy;
+    scale[OM] = v_in / model.r;
     let t_c = t_est / PI;
     scale[X] = scale[VX] * t_c;
     scale[Y] = scale[VY] * t_c;
     scale[PHI] = scale[OM] * t_c;
-    // In stick the spring and the contact point's motion are one oscillator: an error of xi
-    // is worth one of the tangential velocity when their energies match, (1/2) k_t xi^2 =
-    // (1/2) m_t v^2, with m_t = 1 / (1/m + r^2/I) the mass the spring moves at the contact
-    // point and k_t its stiffness at the estimated largest depth. (The force that moves v_x in
-    // t_c, the scale before, is 3 / (omega_t t_c) ~ 1/6 of that on the paper's disc: it set 90
-    // % of the steps in stick, finer than any output needed.) Mindlin's xi kept as the force
-    // (section 14.4) is the elongation times k_t = rate.
-    let m_t = 1.0 / (1.0 / model.mass + r * r / model.inertia);
-    let (k_xi, rate, _) = model.spring(depth_est);
-    let k_t = k_xi * rate;
-    // Without a spring (k_t = 0) its elongation does not act: no error of it counts.
-    scale[XI] = if k_t > 0.0 {
-        scale[VX] * (m_t / k_t).sqrt() * rate
-    } else {
-        f64::INFINITY
-    };
+    scale[XI] = spring_scale(model, scale[VX], depth_est);
     scale[W_EL] = energy;
     scale[W_D] = energy;
     scale[W_T] = energy;
     scale
-}
-
-/// `err_est` from the local error estimates accumulated over the accepted steps (root sum of
-/// squares, components VX, VY, OM): the largest over e_N, e_T, e_kin and omega_out r / v.
-pub(super) fn error_estimate(acc: &State, init: &Initial, r: f64) -> f64 {
-    let v_in = init.vx.hypot(init.vy);
-    let e_t = if init.vx != 0.0 {
-        acc[VX] / init.vx.abs()
-    } else {
-        0.0
-    };
-    let e_n = acc[VY] / init.vy.abs();
-    let e_kin = acc[VX].hypot(acc[VY]) / v_in;
-    let spin = acc[OM] * r / v_in;
-    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin)
 }
 
 impl Reference<'_> {
@@ -93,54 +52,24 @@ impl Reference<'_> {
         self.linear().is_none() && m.touch == Touch::Disc && m.clip_on
     }
 
-    /// The largest step near a point where a disc's force is not smooth (touch and
-    /// separation: the area grows like depth^(3/2), the damping like depth^(1/2), so a step
-    /// of h across such a point errs like (h / t_c)^(3/2) in the velocity, unseen by the
-    /// embedded estimate). The step that contains the point is at most t_c tol^(2/3): the
-    /// first after touch, and towards separation the steps halve the time left until then.
-    /// `h_sing` is that step (`Limits::h_singular`).
+    /// The largest step in mode `m` at state `s` near a point where a disc's force is not
+    /// smooth ([`singular_cap`]); `h_sing` is `Limits::h_singular`.
     pub(super) fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, h_sing: f64) -> f64 {
         if !self.singular_force(m) {
             return f64::INFINITY;
         }
-        if fresh_touch {
-            return h_sing;
-        }
-        let depth = self.model.r - s[Y];
-        if s[VY] > 0.0 && depth > 0.0 {
-            (0.5 * depth / s[VY]).max(h_sing)
-        } else {
-            f64::INFINITY
-        }
+        singular_cap(fresh_touch, (self.model.r - s[Y], s[VY]), h_sing)
     }
 
-    /// The factor on the embedded error estimate of a step across or near a point where the
-    /// disc's force is not smooth (a step that starts within [`ROOT_REACH`] of its lengths
-    /// after touch, where the damping still grows like a root of the time; a step ending on
-    /// separation), which the embedded estimate understates: [`root_error_ratio`] for the
-    /// law's root (the area law's damping grows like t^(1/2), the Tsuji dashpot like
-    /// t^(1/4)), `rho` the time since touch in units of the step. 1 for every other step.
-    /// (Redoing the first four steps after touch as two halves and extrapolating their
-    /// difference, as before, cost 12 evaluations of the law per step, ~6 % of the disc's time
-    /// at tol 1e-6, and covered fewer of the grid's errors: >= 98.4 % against >= 99.9 %.)
+    /// The factor on the local error of a step in mode `m` starting `rho` of its lengths after
+    /// touch, or ending on `event` ([`singular_factor`]).
     pub(super) fn singular_factor(&self, m: &Mode, rho: Option<f64>, event: Option<Event>) -> f64 {
-        if !self.singular_force(m) {
-            return 1.0;
+        match root_exponent(&self.model.scene.normal_law) {
+            Some(p) if self.singular_force(m) => {
+                singular_factor(p, rho, event == Some(Event::Separate))
+            }
+            _ => 1.0,
         }
-        let p = match self.model.scene.normal_law {
-            NormalLaw::Hertz { .. } => 0.25,
-            _ => 0.5,
-        };
-        // Beyond a step's length from touch the embedded estimate no longer understates.
-        let at_touch = rho
-            .filter(|&rho| rho < ROOT_REACH)
-            .map_or(1.0, |rho| root_error_ratio(p, rho, false));
-        let at_separation = if event == Some(Event::Separate) {
-            root_error_ratio(p, 0.0, true)
-        } else {
-            1.0
-        };
-        at_touch.max(at_separation)
     }
 }
 
@@ -154,58 +83,14 @@ fn summed_polygon(model: &Model) -> Option<&crate::geometry::Polygon> {
     }
 }
 
-/// Steps from touch, in units of the step, beyond which [`root_error_ratio`] is 1 (1.1 at
-/// one step, 0.5 at two).
-const ROOT_REACH: f64 = 2.0;
-
-/// The step size controller's factor for a step with scaled error `err` (> 0; rejected above
-/// 1): 0.9 err^(-1/5) within [0.2, 5]. Below 1.8e-4 that is 5 without the power (0.9
-/// (1.8e-4)^(-1/5) = 5.04), which libm's pow, called at every step, made 4 % of a profile of
-/// the adaptive path.
-pub(crate) fn step_factor(err: f64) -> f64 {
-    if err < 1.8e-4 {
-        5.0
-    } else {
-        // In single precision: a step factor needs a few digits, and f64's powf was 6 % of the
-        // disc's time (one per attempted step).
-        (0.9 * f64::from((err as f32).powf(-0.2))).clamp(0.2, 5.0)
-    }
-}
-
-/// What bounds one impact's integration, fixed at its start.
-pub(super) struct Limits {
-    /// The largest step.
-    pub(super) h_max: f64,
-    /// The estimated contact time.
-    pub(super) t_est: f64,
-    /// The largest step across a point where the disc's force is not smooth, t_est tol^(2/3)
-    /// (see `Reference::singular_cap`), fixed per impact.
-    pub(super) h_singular: f64,
-    /// Stop once the contacts have lasted this long ([`TIMEOUT_CONTACT_TIMES`] contact times;
-    /// free flight is jumped over and does not count, as for the fixed steps).
-    pub(super) t_end: f64,
-    /// The step budget (attempts, rejected steps included): steps may be much shorter than
-    /// h_max while a turning polygon brings corner after corner to the plate (counted in
-    /// N_c), but an explicit method crawls through a damper much stiffer than the contact (a
-    /// spinning triangle at gamma = 10 takes steps of 1e-7 t_ref): such scenes end as timed
-    /// out.
-    pub(super) max_steps: u64,
-    /// Pieces shorter than this are negligible (for chattering).
-    pub(super) tiny: f64,
-    /// The polygon's corners (0 for a disc or sphere).
-    pub(super) n_corners: usize,
-    /// Kinetic energy before the impact.
-    pub(super) energy_in: f64,
-}
-
 impl<'a> Reference<'a> {
-    /// The ODE of one impact and the limits of its integration.
+    /// The ODE of one impact, the limits of its integration and the kinetic energy before it.
     pub(super) fn for_impact(
         model: &'a Model,
         init: &Initial,
         depth_est: f64,
         opts: &ReferenceOptions,
-    ) -> (Self, Limits) {
+    ) -> (Self, Limits, f64) {
         let r = model.r;
         let speed = init.vx.hypot(init.vy) + r * init.omega.abs();
         let t_est = PI * depth_est / init.vy.abs();
@@ -226,19 +111,11 @@ impl<'a> Reference<'a> {
             inv_inertia: 1.0 / model.inertia,
             summed: summed_polygon(model),
         };
-        let lim = Limits {
-            h_max,
-            t_est,
-            h_singular: t_est * opts.tol.powf(2.0 / 3.0),
-            t_end: TIMEOUT_CONTACT_TIMES * t_est,
-            max_steps: budget_for(
-                model,
-                reference_contact_steps(model, init, depth_est, h_max, opts.tol),
-            ),
-            tiny: 1e-9 * t_est,
-            n_corners: verts.len(),
-            energy_in,
-        };
-        (ode, lim)
+        let max_steps = budget_for(
+            model,
+            reference_contact_steps(model, init, depth_est, h_max, opts.tol),
+        );
+        let lim = Limits::new(t_est, h_max, opts.tol, max_steps);
+        (ode, lim, energy_in)
     }
 }

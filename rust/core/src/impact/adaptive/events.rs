@@ -4,10 +4,10 @@
 use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
 use super::step::Step;
+use super::switches::{first_positive_sample, locate_switch};
 use super::{State, OM, PHI, VX, VY, Y};
 use crate::geometry::{disc_arm_per_depth, Shape};
 use crate::model::NormalLaw;
-use crate::numerics::roots::bracket;
 use crate::numerics::trig::sin_cos;
 
 /// Margin of the slip -> stick event function, relative to the sum of its terms' magnitudes
@@ -320,11 +320,7 @@ impl Reference<'_> {
                 g(lo)
             }
         });
-        if g0 > 0.0 {
-            return lo;
-        }
-        // The state just past the switch (the event fired) starts the next piece.
-        bracket(g, (lo, g0), (hi, g_hi), self.switch_precision(ev)).1
+        locate_switch(g, (lo, g0), (hi, g_hi), self.switch_precision(ev)).1
     }
 
     /// To what fraction of its step a switch `ev` is located. The switches leave the forces
@@ -354,15 +350,8 @@ impl Reference<'_> {
         step: &Step,
         at: impl IntoIterator<Item = (f64, Option<f64>)>,
     ) -> Option<f64> {
-        let mut before = (0.0, None);
-        for (th, known) in at {
-            let g = known.unwrap_or_else(|| self.value_at(m, ev, step, th));
-            if g > 0.0 {
-                return Some(self.locate_in(m, ev, step, before, (th, g)));
-            }
-            before = (th, Some(g));
-        }
-        None
+        first_positive_sample(|th| self.value_at(m, ev, step, th), at)
+            .map(|(before, after)| self.locate_in(m, ev, step, before, after))
     }
 }
 
@@ -424,7 +413,7 @@ mod tests {
         let model = Model::new(scene).unwrap();
         let init = Initial::from_angle(0.0357, 40.0, 0.0, 0.0);
         let depth_est = estimate_max_depth(&model, &init).unwrap();
-        let (ode, _) =
+        let (ode, _, _) =
             Reference::for_impact(&model, &init, depth_est, &ReferenceOptions::default());
         check(&ode, depth_est);
     }

@@ -1,5 +1,6 @@
 //! The largest depth and overlap area of an impact, found inside the steps: on the dense output
-//! where they peak between a step's ends.
+//! where they peak between a step's ends (where the normal velocity turns: `turning_point`, on
+//! the plate and on a pair).
 
 use super::law::{Eval, Reference};
 use super::piece::{Mode, Tally, Touch};
@@ -92,12 +93,9 @@ fn deepest_disc(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
 fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tally) {
     let v_y = |th: f64| step.component_at(th, VY);
     let v_end = if frac == 1.0 { step.y1[VY] } else { v_y(frac) };
-    if v_end <= 0.0 {
+    let Some(th) = turning_point(v_y, step.y0[VY], (frac, v_end)) else {
         return;
-    }
-    // Near its peak the depth moves like the square of the distance to it: a position to
-    // 1e-10 of the step leaves nothing of the depth.
-    let (_, th) = roots::bracket(v_y, (0.0, step.y0[VY]), (frac, v_end), 1e-10 * frac);
+    };
     let s = step.at(th);
     // The shape's own overlap (the same as the held mode's while in contact): calling the
     // mode's here, out of line, cost the law's evaluation its inlining of it (10 % per step).
@@ -105,6 +103,20 @@ fn deepest_disc_inside(ode: &Reference, step: &Step, frac: f64, tally: &mut Tall
         tally.max_depth = tally.max_depth.max(o.depth);
         tally.max_area = tally.max_area.max(o.area);
     }
+}
+
+/// Where a rate that is not positive at a step's start (`start`) and positive at `frac` of it
+/// (`end`) turns from falling to rising, located on the step's dense output (`rate` of the
+/// fraction of the step): the deepest point of a contact, where the normal velocity turns, on
+/// the plate and on a pair. Near its turn a depth moves like the square of the distance to it:
+/// a position to 1e-10 of the step leaves nothing of the depth. `None` where it does not turn.
+pub(crate) fn turning_point(
+    rate: impl Fn(f64) -> f64,
+    start: f64,
+    (frac, end): (f64, f64),
+) -> Option<f64> {
+    (start <= 0.0 && end > 0.0)
+        .then(|| roots::bracket(rate, (0.0, start), (frac, end), 1e-10 * frac).1)
 }
 
 /// Largest value of `f` on [0, frac] when it peaks inside, given its values at 0, frac / 2 and

@@ -38,6 +38,7 @@ mod extremes;
 mod law;
 mod mode;
 mod piece;
+mod rules;
 mod run;
 mod step;
 mod switches;
@@ -48,9 +49,15 @@ use crate::impact::record::{estimate_max_depth, Record, Trace};
 use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
-pub(crate) use control::step_factor;
+pub(crate) use extremes::turning_point;
+pub(crate) use rules::{
+    error_estimate, root_exponent, singular_cap, singular_factor, spring_scale, state_at_switch,
+    velocity_scales, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
+};
 pub(crate) use run::integrate;
-pub(crate) use switches::{sampled_first_switch, TANGENTIAL_PARTS};
+pub(crate) use switches::{
+    first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
+};
 
 /// Settings of the reference integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]

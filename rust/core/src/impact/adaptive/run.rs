@@ -1,11 +1,11 @@
 //! The loop of one impact: step, reject or accept, end the piece at the first switch, handle
 //! chattering switches, and build the record.
 
-use super::control::{error_estimate, step_factor, Limits};
 use super::extremes::track_extremes;
 use super::law::{Eval, Reference};
 use super::mode::{apply, start_slip};
 use super::piece::{Event, Mode, Tally, Tan, Touch};
+use super::rules::{error_estimate, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict};
 use super::step::Step;
 use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, Y};
 use crate::cancel::Cancel;
@@ -18,13 +18,6 @@ use std::f64::consts::PI;
 /// Shortest stick phase, in units of the estimated contact time, that counts for
 /// `slip_events` (see `Run::take`).
 const MIN_STICK: f64 = 1e-6;
-
-/// How many times its location's precision a piece ended by a switch may last and still count
-/// as negligible for the chatter remedies (see `Run::count_chatter`).
-const CHATTER_RESOLUTIONS: f64 = 100.0;
-
-/// Consecutive zero-length pieces after which a step ignores its events (see `first_switch`).
-const MAX_ZERO_PIECES: u32 = 64;
 
 /// Integrates one impact from first touch (validated scene and initial state).
 pub(crate) fn integrate(
@@ -62,6 +55,8 @@ struct Run<'a, 't> {
     ode: Reference<'a>,
     init: &'a Initial,
     lim: Limits,
+    /// Kinetic energy before the impact.
+    energy_in: f64,
     trace: Option<&'t mut Trace>,
     /// The ODE's state, its mode, and the first stage of the next step (FSAL).
     s: State,
@@ -76,15 +71,12 @@ struct Run<'a, 't> {
     /// Accepted steps, and attempts (rejected ones and those redone to a switch included).
     steps: u64,
     attempts: u64,
-    /// Consecutive pieces of zero length (switches that fire at once).
-    zero_pieces: u32,
-    /// Consecutive negligible pieces ended by a stick/slip switch, and by a clip switch.
-    chatter_t: u32,
-    chatter_c: u32,
+    /// Consecutive negligible and zero-length pieces.
+    chatter: Chatter,
     /// Stick/slip switches ignored for one step (a sliding mode, see `resolve_chatter`).
     hold_tangential: bool,
-    /// The accepted steps' local error estimates (sums of squares), for `err_est`.
-    err_acc: State,
+    /// The accepted steps' local errors, for `err_est`.
+    err_acc: ErrorSum<NS>,
     /// No step taken since the last touch, at `t_touch`: the next starts at a point where the
     /// disc's force is not smooth, and the next few still see its root singularity.
     fresh_touch: bool,
@@ -99,7 +91,7 @@ impl<'a, 't> Run<'a, 't> {
         opts: &ReferenceOptions,
         mut trace: Option<&'t mut Trace>,
     ) -> Self {
-        let (ode, lim) = Reference::for_impact(model, init, depth_est, opts);
+        let (ode, lim, energy_in) = Reference::for_impact(model, init, depth_est, opts);
         let shape = &model.scene.shape;
         let mut s: State = [0.0; NS];
         s[Y] = shape.touch_height(init.phi0);
@@ -124,6 +116,7 @@ impl<'a, 't> Run<'a, 't> {
             ode,
             init,
             lim,
+            energy_in,
             trace,
             s,
             mode,
@@ -136,11 +129,9 @@ impl<'a, 't> Run<'a, 't> {
             t: 0.0,
             steps: 0,
             attempts: 0,
-            zero_pieces: 0,
-            chatter_t: 0,
-            chatter_c: 0,
+            chatter: Chatter::default(),
             hold_tangential: false,
-            err_acc: [0.0; NS],
+            err_acc: ErrorSum::default(),
             fresh_touch: true,
             t_touch: 0.0,
         }
@@ -155,13 +146,7 @@ impl<'a, 't> Run<'a, 't> {
 
     /// The budget that is spent, if one is.
     fn budget_spent(&self) -> Option<StopReason> {
-        if self.attempts >= self.lim.max_steps {
-            Some(StopReason::StepBudget)
-        } else if self.contact_time() >= self.lim.t_end {
-            Some(StopReason::ContactTimeBudget)
-        } else {
-            None
-        }
+        self.lim.budget_spent(self.attempts, self.contact_time())
     }
 
     /// The time spent in contact so far, the ongoing contact included.
@@ -250,11 +235,12 @@ impl<'a, 't> Run<'a, 't> {
             self.fresh_touch,
             lim.h_singular,
         ));
-        if lim.n_corners > 0 && s[OM] != 0.0 {
+        let n_corners = self.ode.verts.len();
+        if n_corners > 0 && s[OM] != 0.0 {
             // A turning polygon brings corners to the plate: step finely enough (a quarter of
             // the angle between corners) that no corner touches and leaves within one step,
             // in flight (a missed re-contact) and in contact (a stale set of submerged corners).
-            h = h.min(0.25 * (2.0 * PI / lim.n_corners as f64) / s[OM].abs());
+            h = h.min(0.25 * (2.0 * PI / n_corners as f64) / s[OM].abs());
         }
         h
     }
@@ -266,23 +252,17 @@ impl<'a, 't> Run<'a, 't> {
         self.h = h;
         let err = self.ode.dp_step(&self.mode, &self.s, &self.k1, h, step);
         self.attempts += 1;
-        let h_min = 1e-13 * self.lim.t_est;
-        if !err.is_finite() {
-            // Never accept a non-finite state: shrink hard and retry; if even the smallest
-            // step fails, stop with the last finite state and say so.
-            if h > h_min {
-                self.h = (0.1 * h).max(h_min);
+        let h_min = self.lim.h_min();
+        let h_next = match verdict(err, h, h_min) {
+            Verdict::Accept { h_next } => h_next,
+            Verdict::Reject { h_retry } => {
+                self.h = h_retry;
                 return None;
             }
-            return Some(StopReason::NonFinite);
-        }
-        if err > 1.0 && h > h_min {
-            self.h = (h * step_factor(err)).max(h_min);
-            return None;
-        }
-        let h_next = h * step_factor(err);
+            Verdict::NonFinite => return Some(StopReason::NonFinite),
+        };
         let first = self.first_switch(step);
-        if let Some(c) = step.pull.filter(|_| self.zero_pieces < MAX_ZERO_PIECES) {
+        if let Some(c) = step.pull.filter(|_| !self.chatter.stalled()) {
             if first.is_none_or(|(th, _)| th > c) && h > h_min {
                 // The step crossed a clip switch that its dense output does not show: never
                 // integrate across it with the unclipped, pulling force; shorten the step.
@@ -297,11 +277,8 @@ impl<'a, 't> Run<'a, 't> {
     /// Events: the earliest switch inside the step ends the piece there (fraction of the
     /// step, switch).
     fn first_switch(&self, step: &Step) -> Option<(f64, Event)> {
-        // The last resort against a loop of zero-length pieces: well above the chatter counts
-        // (16), whose remedies (`resolve_chatter`) must act first; at 16 a tangential chatter
-        // once switched every event off and the step crossed the clip with the plate pulling
-        // (the disc at theta 34, mu 0.6: e_N off by 1.2e-4).
-        if self.zero_pieces >= MAX_ZERO_PIECES {
+        // The last resort against a loop of zero-length pieces (`Chatter::stalled`).
+        if self.chatter.stalled() {
             return None;
         }
         let mut first: Option<(f64, Event)> = None;
@@ -363,17 +340,13 @@ impl<'a, 't> Run<'a, 't> {
         };
         let from_touch = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
         let factor = self.ode.singular_factor(&self.mode, from_touch, event);
-        for i in [VX, VY, OM] {
-            // In quadrature: the local errors' signs vary along an impact (summed, their
-            // absolute values overstated the error 15-fold at tol 1e-4 and 124-fold at 1e-10).
-            self.err_acc[i] += (factor * err_taken[i].abs()).powi(2);
-        }
+        self.err_acc.add(&err_taken, factor, [VX, VY, OM]);
         self.hold_tangential = false;
-        self.count_chatter(event, h_taken, h);
+        let switch = event.map(|ev| (switch_kind(ev), self.ode.switch_precision(ev)));
+        self.chatter.count(switch, (h_taken, h), self.lim.tiny);
         if h_taken > 0.0 {
             self.fresh_touch = false;
             self.steps += 1;
-            self.zero_pieces = 0;
             // Only a stick phase of some length counts for slip events: a guess of stick at
             // first touch that the events correct at once, chattering, or the disc's stick of
             // ~1e-9 t_c just after touch (the damping's rate, like t^(-1/2), opens the Coulomb
@@ -384,8 +357,6 @@ impl<'a, 't> Run<'a, 't> {
             // The deepest point inside the step (where the depth stops growing).
             let frac = h_taken / h;
             track_extremes(&self.ode, &self.mode, step, frac, &mut self.tally, &self.e1);
-        } else {
-            self.zero_pieces += 1;
         }
         self.t += h_taken;
         self.s = s_new;
@@ -417,27 +388,6 @@ impl<'a, 't> Run<'a, 't> {
         };
     }
 
-    /// Counts consecutive negligible pieces ended by the same kind of switch: shorter than
-    /// [`Limits::tiny`] or than [`CHATTER_RESOLUTIONS`] times the precision to which the switch
-    /// was located in its step `h`. The root finder may return any point within that
-    /// precision past the root, and a sliding mode amplifies it: a bracket that crossed the
-    /// root by half the precision left the clip of a damper far stiffer than the contact
-    /// switching on and off in pieces of 2.5e-7 and 3e-6 of a step (precision 1e-6), above
-    /// `tiny`, until the step budget ran out (8 of the extremes benchmark's scenes); so the
-    /// remedy no longer depends on where within its precision a switch lands.
-    fn count_chatter(&mut self, event: Option<Event>, h_taken: f64, h: f64) {
-        let resolution = event.map_or(0.0, |ev| {
-            CHATTER_RESOLUTIONS * self.ode.switch_precision(ev) * h
-        });
-        let tiny = self.lim.tiny.max(resolution);
-        match event {
-            Some(Event::ToSlip | Event::ToStick) if h_taken < tiny => self.chatter_t += 1,
-            Some(Event::ClipOn | Event::ClipOff) if h_taken < tiny => self.chatter_c += 1,
-            _ if h_taken >= tiny => (self.chatter_t, self.chatter_c) = (0, 0),
-            _ => {}
-        }
-    }
-
     /// After a step with the clip held off: the end state decides the clip again.
     fn end_clip_hold(&mut self) {
         if self.mode.clip_hold {
@@ -452,22 +402,18 @@ impl<'a, 't> Run<'a, 't> {
     /// Leaves a chattering switch for one step in the mode of its sliding motion.
     fn resolve_chatter(&mut self) {
         let (mode, s) = (&mut self.mode, &mut self.s);
-        if self.chatter_c >= 16 && !mode.clip_on {
-            // The clip switches on and off at once: a damper much stiffer than the contact
-            // holds F_el + F_d at zero (a sliding mode), so the force is about zero too. Take
-            // one step without it; an explicit method could not follow the damper anyway.
+        if !mode.clip_on && self.chatter.take_clip() {
+            // The clip switches on and off at once: take one step without the force; an
+            // explicit method could not follow the damper anyway.
             mode.clip_hold = true;
-            self.chatter_c = 0;
         }
-        if self.chatter_t >= 16 {
-            // Stick and slip each end at once: the motion slides along |F_trial| = mu F_n
-            // (a Filippov sliding mode), whose force law is slip's. Take one step in slip.
+        if self.chatter.take_tangential() {
+            // Stick and slip each end at once: take one step in slip.
             if mode.tan == Tan::Stick {
                 let e = self.ode.eval(mode, s).1;
                 start_slip(&self.ode, mode, s, &e);
             }
             self.hold_tangential = true;
-            self.chatter_t = 0;
         }
     }
 
@@ -501,6 +447,13 @@ impl<'a, 't> Run<'a, 't> {
         }
     }
 
+    /// `err_est` from the accumulated local errors of the velocities and the spin.
+    fn err_est(&self) -> f64 {
+        let acc = &self.err_acc;
+        let spin = (acc.of(OM), self.ode.model.r);
+        error_estimate(self.init, (acc.of(VX), acc.of(VY)), [spin])
+    }
+
     /// The record of the impact, ended for `stop`.
     fn finish(mut self, stop: StopReason) -> Record {
         let (model, init, s) = (self.ode.model, self.init, &self.s);
@@ -515,18 +468,27 @@ impl<'a, 't> Run<'a, 't> {
             max_depth: tally.max_depth,
             max_area: tally.max_area,
             slip_events: tally.slip_events,
-            energy_in: self.lim.energy_in,
+            energy_in: self.energy_in,
             work_normal: s[W_EL] + s[W_D],
             work_damping: s[W_D],
             work_friction: s[W_T],
             step_budget: self.lim.max_steps,
             stop,
-            err_est: Some(error_estimate(&self.err_acc.map(f64::sqrt), init, model.r)),
+            err_est: Some(self.err_est()),
             ..Record::default()
         };
         let end = Ending::on_plate(&[s[X], s[Y], s[PHI]], &[s[VX], s[VY], s[OM]]);
         rec.close(&Bodies::Plate(model), init, &end);
         rec
+    }
+}
+
+/// The kind of a switch, for the chatter count.
+fn switch_kind(ev: Event) -> SwitchKind {
+    match ev {
+        Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
+        Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
+        _ => SwitchKind::Other,
     }
 }
 

@@ -4,6 +4,7 @@
 
 use super::law::{Eval, Reference};
 use super::piece::{Mode, Tan};
+use super::rules::state_at_switch;
 use super::{State, NS, XI};
 use crate::integrate::dopri::{DenseStep, C};
 
@@ -67,22 +68,11 @@ impl Reference<'_> {
         self.scaled_norm(m, &out.dp.err)
     }
 
-    /// The state where a piece of mode `m` ends inside `step`, at fraction `th`, from the
-    /// step's dense output, with its local error, where the dense output's own error estimate
-    /// (`DenseStep::at_with_estimate`: its gap to the cubic Hermite interpolant of the step's
-    /// ends, scaled by the ratio of its last two terms) is within the local tolerance; that
-    /// estimate joins `err_est`. `None` elsewhere (near a root singularity of the force, at
-    /// tight tolerances): the step is then redone up to the switch. Redone always, a corner
-    /// crossing cost the 120-gon a step (six evaluations of the law) besides its location;
-    /// taken from the dense output always, the disc erred 6.3 tol at tol 1e-10; with the
-    /// unscaled gap, which overstates the error by the ratio's inverse, half the located
-    /// switches were redone (a switch on the 120-gon 1.43-1.47 us against 1.35-1.39 us).
+    /// The state where a piece of mode `m` ends inside `step`, at fraction `th`, with its
+    /// local error, from the dense output where that is within the local tolerance
+    /// ([`state_at_switch`]); `None` where the step must be redone up to the switch.
     pub(super) fn state_at_switch(&self, m: &Mode, step: &Step, th: f64) -> Option<(State, State)> {
-        let (s_th, gap) = step.at_with_estimate(th);
-        (self.scaled_norm(m, &gap) <= 1.0).then(|| {
-            let err = std::array::from_fn(|i| th * step.err[i].abs() + gap[i]);
-            (s_th, err)
-        })
+        state_at_switch(step, th, |gap| self.scaled_norm(m, gap))
     }
 
     /// The largest of the components of `err` (absolute errors of the state) in units of the

@@ -243,6 +243,45 @@ pub(crate) fn sampled_first_switch(
     Some(locate((from.0, Some(from.1)), (th, v)))
 }
 
+/// Where an event function `g` of the fraction of a step (> 0 once its switch fired) first
+/// turns positive between `lo`, where it has not fired (`g_lo` its value there), and `hi`,
+/// where it has (`g_hi`), to `precision` of the step (Brent's method): the last point before
+/// the switch and the first past it, which starts the next piece; both `lo` where the switch
+/// had fired there already. Every located switch, on the plate and on a pair.
+pub(crate) fn locate_switch(
+    g: impl Fn(f64) -> f64,
+    (lo, g_lo): (f64, f64),
+    (hi, g_hi): (f64, f64),
+    precision: f64,
+) -> (f64, f64) {
+    if g_lo > 0.0 {
+        return (lo, lo);
+    }
+    roots::bracket(g, (lo, g_lo), (hi, g_hi), precision)
+}
+
+/// A fraction of a step where an event function is sampled, with its value there when known.
+pub(crate) type Sample = (f64, Option<f64>);
+
+/// The first of the increasing fractions `at` of a step (each with the event function's value
+/// where already known) where `g` is positive, and the sample before it (the step's start,
+/// value unknown, before the first): the bracket of the first switch among the samples, each
+/// value computed once.
+pub(crate) fn first_positive_sample(
+    g: impl Fn(f64) -> f64,
+    at: impl IntoIterator<Item = Sample>,
+) -> Option<(Sample, (f64, f64))> {
+    let mut before = (0.0, None);
+    for (th, known) in at {
+        let value = known.unwrap_or_else(|| g(th));
+        if value > 0.0 {
+            return Some((before, (th, value)));
+        }
+        before = (th, Some(value));
+    }
+    None
+}
+
 /// How many times its variation over a step's stages the stick -> slip event function must
 /// stay below zero for the step to skip its samples (see `Reference::stays_stuck`).
 const STUCK_SPANS: f64 = 2.0;

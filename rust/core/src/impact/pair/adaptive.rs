@@ -12,35 +12,25 @@
 //! spring's trial force would move inside the cone, s dF_trial/dt < mu dF_n/dt (both rates
 //! taken along the motion by a forward difference).
 
-use super::ode::{
-    error_estimate, error_scales, Event, Mode, PairOde, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT,
-    X, XI, Y,
-};
-use super::switches::first_switch;
+use super::law::{error_scales, PairOde};
+use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
+use super::switches::{first_switch, Ignored, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
-use crate::impact::adaptive::step_factor;
-use crate::impact::flight::{self, Approach, Jump};
-use crate::impact::record::{
-    separation_normal, Bodies, Ending, Record, StopReason, Trace, TIMEOUT_CONTACT_TIMES,
+use crate::impact::adaptive::{
+    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, turning_point,
+    verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
 };
+use crate::impact::flight::{self, Approach, Jump};
+use crate::impact::record::{separation_normal, Bodies, Ending, Record, StopReason, Trace};
 use crate::impact::side::poll_stride;
-use crate::integrate::dopri::{root_error_ratio, DenseStep};
+use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
-use crate::model::{Initial, NormalLaw, Pair};
-use crate::numerics::roots;
+use crate::model::{Initial, Pair};
 use std::f64::consts::PI;
 
-/// Consecutive pieces ended by a switch within [`CHATTER_SPAN`] of the contact time after which
-/// a step ignores the switches that chatter: a slipping contact whose cone shrinks faster than
-/// a stuck spring can follow (the tail of a contact at large mu) alternates stick and slip in
-/// pieces of ~1e-17 s; it then slides along the cone for the step, as Coulomb's law says.
-const MAX_CHATTER: u32 = 8;
-
-/// See [`MAX_CHATTER`], in units of the estimated contact time.
-const CHATTER_SPAN: f64 = 1e-9;
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
 /// estimated largest overlap `depth_est`); `tol` the local tolerance per step.
 pub(super) fn integrate<G: PairGeometry>(
@@ -51,8 +41,7 @@ pub(super) fn integrate<G: PairGeometry>(
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let mut run = Run::new(pair, init, (geometry, start), depth_est, tol);
-    run.rec.step_budget = max_steps;
+    let mut run = Run::new(pair, init, (geometry, start), (depth_est, tol, max_steps));
     let mut trace = trace;
     if let Some(tr) = trace.as_deref_mut() {
         run.push(tr);
@@ -62,13 +51,14 @@ pub(super) fn integrate<G: PairGeometry>(
     let stride = poll_stride(pair, 16);
     let stop = loop {
         cancel.poll_every(run.attempts, stride)?;
-        if run.attempts >= max_steps {
-            break StopReason::StepBudget;
+        if let Some(stop) = run.lim.budget_spent(run.attempts, run.contact_elapsed()) {
+            break stop;
         }
-        if run.contact_elapsed() > run.t_end {
-            break StopReason::ContactTimeBudget;
-        }
-        if run.attempt(&mut step) {
+        let accepted = match run.attempt(&mut step) {
+            Ok(accepted) => accepted,
+            Err(stop) => break stop,
+        };
+        if accepted {
             if let Some(tr) = trace.as_deref_mut() {
                 run.push(tr);
             }
@@ -81,43 +71,44 @@ pub(super) fn integrate<G: PairGeometry>(
 }
 
 /// The state of one pair impact between steps.
-struct Run<'a, G> {
-    ode: PairOde<'a, G>,
-    init: Initial,
-    mode: Mode,
-    s: State,
-    k1: State,
-    t: f64,
-    h: f64,
-    h_max: f64,
-    /// The largest step near touch, where the damping grows like a root of the time.
-    h_singular: f64,
-    t_end: f64,
+pub(super) struct Run<'a, G> {
+    pub(super) ode: PairOde<'a, G>,
+    pub(super) init: Initial,
+    pub(super) mode: Mode,
+    pub(super) s: State,
+    pub(super) k1: State,
+    pub(super) t: f64,
+    pub(super) h: f64,
+    /// The largest and smallest steps, the budgets and the negligible piece.
+    pub(super) lim: Limits,
     /// 1 / (tol x scale) of each component.
-    weight: State,
+    pub(super) weight: State,
     /// Local errors accumulated in quadrature (`err_est`).
-    acc: State,
-    attempts: u64,
-    steps: u64,
-    /// Consecutive pieces shorter than the chatter span, and that span (s).
-    chatter: u32,
-    chatter_span: f64,
-    separated: bool,
+    pub(super) acc: ErrorSum<NS>,
+    pub(super) attempts: u64,
+    pub(super) steps: u64,
+    /// Consecutive negligible and zero-length pieces.
+    pub(super) chatter: Chatter,
+    /// The switches ignored for one step where they chattered (the rules' remedies).
+    pub(super) ignored: Ignored,
+    /// No step taken since the last touch (`singular_cap`).
+    pub(super) fresh_touch: bool,
+    pub(super) separated: bool,
     /// When the current contact began (s), the centres' distance at first touch and the line
     /// of centres when the last contact ended.
-    t_touch: f64,
+    pub(super) t_touch: f64,
     /// How far past a touch its mode is probed (s).
-    probe_dt: f64,
+    pub(super) probe_dt: f64,
     /// The pair's angular momentum, restored after every step (`Pair::restoring_turn`).
-    l0: f64,
+    pub(super) l0: f64,
     /// The probe of a touch just applied, for the next piece's first derivative
     /// (`PairOde::touch_derivative`).
-    touch_probe: Option<State>,
+    pub(super) touch_probe: Option<State>,
     /// The sliding speed along a slip's force past which the slip ends (m/s).
-    slip_margin: f64,
-    y0: f64,
-    n_sep: [f64; 2],
-    rec: Record,
+    pub(super) slip_margin: f64,
+    pub(super) y0: f64,
+    pub(super) n_sep: [f64; 2],
+    pub(super) rec: Record,
 }
 
 impl<'a, G: PairGeometry> Run<'a, G> {
@@ -125,11 +116,12 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         pair: &'a Pair,
         init: &Initial,
         (geometry, start): (G, Start),
-        depth_est: f64,
-        tol: f64,
+        (depth_est, tol, max_steps): (f64, f64, u64),
     ) -> Self {
         let law = &pair.law;
         let speed = init.vx.hypot(init.vy);
+        // The speed the error scales are floored by, spins included (the plate's).
+        let spun = speed + pair.particle.r * init.omega.abs() + pair.r2 * init.partner_omega.abs();
         let t_est = PI * depth_est / init.vy.abs();
         let mut ode = PairOde {
             pair,
@@ -167,9 +159,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         (mode.tan, probe) = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
         let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
         let weight =
-            error_scales(pair, init, (speed, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
+            error_scales(pair, init, (spun, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
         let k1 = ode.touch_derivative(&mode, &s, &probe);
-        let h_max = law.scene.dt_factor * law.t_ref;
+        let lim = Limits::new(t_est, law.scene.dt_factor * law.t_ref, tol, max_steps);
         Run {
             ode,
             init: *init,
@@ -177,16 +169,15 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             s,
             k1,
             t: 0.0,
-            h: h_max.min(t_est * tol.powf(2.0 / 3.0)),
-            h_max,
-            h_singular: t_est * tol.powf(2.0 / 3.0),
-            t_end: TIMEOUT_CONTACT_TIMES * t_est,
+            h: lim.h_max.min(lim.h_singular),
+            lim,
             weight,
-            acc: [0.0; NS],
+            acc: ErrorSum::default(),
             attempts: 0,
             steps: 0,
-            chatter: 0,
-            chatter_span: CHATTER_SPAN * t_est,
+            chatter: Chatter::default(),
+            ignored: Ignored::default(),
+            fresh_touch: true,
             separated: false,
             t_touch: 0.0,
             probe_dt: 1e-12 * t_est,
@@ -198,78 +189,115 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             rec: Record {
                 contacts: 1,
                 energy_in,
+                step_budget: max_steps,
                 ..Record::default()
             },
         }
     }
 
-    /// One attempted step; true when it was accepted (up to a switch, which it then applies).
-    fn attempt(&mut self, step: &mut DenseStep<NS, NS>) -> bool {
+    /// One attempted step; true when it was accepted (up to a switch, which it then applies),
+    /// `Err` with why the impact stops where it must.
+    fn attempt(&mut self, step: &mut DenseStep<NS, NS>) -> std::result::Result<bool, StopReason> {
         self.attempts += 1;
         let h = self.capped_step();
         let (ode, mode) = (&self.ode, self.mode);
         step.take(&self.s, &self.k1, h, |_, y, k| {
             ode.eval(&mode, y, k);
         });
-        let err = self.error_norm(step, h);
-        if !(err <= 1.0) {
-            self.h = h * if err.is_finite() {
-                step_factor(err)
-            } else {
-                0.2
-            };
-            return false;
-        }
-        let chattering = self.chatter >= MAX_CHATTER;
-        let first = first_switch(&self.ode, &self.mode, step, chattering);
-        let theta = first.map_or(1.0, |(th, _)| th);
-        let (s_new, err_taken) = if theta < 1.0 {
-            self.state_at_switch(step, theta)
-        } else {
-            (step.y1, step.err)
+        let h_next = match verdict(self.scaled_norm(&step.err), h, self.lim.h_min()) {
+            Verdict::Accept { h_next } => h_next,
+            Verdict::Reject { h_retry } => {
+                self.h = h_retry;
+                return Ok(false);
+            }
+            Verdict::NonFinite => return Err(StopReason::NonFinite),
         };
-        for (acc, e) in self.acc.iter_mut().zip(err_taken) {
-            *acc = acc.hypot(e);
+        let ignored = std::mem::take(&mut self.ignored);
+        let first = first_switch(&self.ode, &self.mode, step, ignored);
+        let theta = first.map_or(1.0, |(th, _)| th);
+        let (s_new, err_taken) = if theta >= 1.0 {
+            (step.y1, step.err)
+        } else if theta * h <= 0.0 {
+            (self.s, [0.0; NS])
+        } else {
+            // As on the plate, a switch inside the step counts against the budget as a step's
+            // work, whether the step is redone to it or not.
+            self.attempts += 1;
+            self.state_at_switch(step, theta)
+        };
+        let event = first.map(|(_, ev)| ev);
+        let factor = self.singular_factor(theta * h, event);
+        self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
+        let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
+        self.chatter.count(switch, (theta * h, h), self.lim.tiny);
+        if theta * h > 0.0 {
+            // Pieces of zero length are no steps (the plate's count).
+            self.track_extremes(step, theta);
+            self.fresh_touch = false;
+            self.steps += 1;
         }
-        self.track_extremes(step, theta);
         self.s = s_new;
         self.keep_angular_momentum();
         self.t += theta * h;
-        self.steps += 1;
-        if let Some((_, ev)) = first {
-            self.apply(ev);
-            self.chatter = if theta * h <= self.chatter_span {
-                self.chatter + 1
-            } else {
-                0
-            };
-        } else {
-            self.chatter = 0;
-            if self.mode.apart {
-                self.fly();
-            } else {
-                self.end_a_reversed_slip();
-            }
+        if ignored.clip {
+            self.end_clip_hold();
         }
+        if let Some(ev) = event {
+            self.apply(ev);
+        } else if self.mode.apart {
+            self.fly();
+        } else {
+            self.end_a_reversed_slip();
+        }
+        self.resolve_chatter();
         self.k1 = match self.touch_probe.take() {
             Some(probe) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
             None => self.ode.eval_new(&self.mode, &self.s).0,
         };
-        self.h = (h * step_factor(err.max(1e-12))).min(self.h_max);
-        true
+        // After a switch the next step is at most this one (the plate's rule).
+        self.h = if event.is_some() {
+            h_next.min(h)
+        } else {
+            h_next
+        };
+        Ok(true)
     }
 
-    /// The state where a piece ends inside `step`, at fraction `th`, and its local error
-    /// (section 7.3, with the unscaled gap): from the dense output where it agrees with the cubic
-    /// Hermite interpolant of the step's ends to the local tolerance (their gap, which
-    /// overstates the dense output's error, joins `err_est`), else from the step redone up
-    /// to there. Taken from the dense output always, its error at the switches of the linear
-    /// law's springs went unmeasured (`err_est` a tenth of the error).
+    /// The factor on the local error of a piece of length `h_taken` ended by `event`, where
+    /// the force has a root singularity at touch and separation ([`singular_factor`]).
+    fn singular_factor(&self, h_taken: f64, event: Option<Event>) -> f64 {
+        match root_exponent(&self.ode.pair.law.scene.normal_law) {
+            Some(p) if self.singular_mode() => {
+                let rho = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
+                singular_factor(p, rho, event == Some(Event::Separate))
+            }
+            _ => 1.0,
+        }
+    }
+
+    /// Leaves a chattering switch for one step in the mode of its sliding motion (the rules'
+    /// remedies, `Chatter`): a clip that switches on and off at once stays clipped (no force),
+    /// stick and slip that each end at once slide along the cone in slip.
+    fn resolve_chatter(&mut self) {
+        if self.mode.clipped && self.chatter.take_clip() {
+            self.ignored.clip = true;
+        }
+        if self.chatter.take_tangential() {
+            if self.mode.tan == Tan::Stick {
+                let e = self.ode.eval_new(&self.mode, &self.s).1;
+                self.mode.tan = Tan::Slip(e.trial.signum());
+            }
+            self.ignored.tangential = true;
+        }
+        self.ignored.all = self.chatter.stalled();
+    }
+
+    /// The state where a piece ends inside `step`, at fraction `th`, and its local error:
+    /// from the dense output where its error estimate is within the local tolerance, else from
+    /// the step redone up to there ([`state_at_switch`]).
     fn state_at_switch(&self, step: &DenseStep<NS, NS>, th: f64) -> (State, State) {
-        let (s_th, gap) = step.at_with_gap(th);
-        let err: State = std::array::from_fn(|i| th * step.err[i].abs() + gap[i]);
-        if self.scaled_norm(&gap) <= 1.0 {
-            return (s_th, err);
+        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap)) {
+            return at;
         }
         let (ode, mode) = (&self.ode, self.mode);
         let mut redo = DenseStep::<NS, NS>::default();
@@ -279,44 +307,27 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         (redo.y1, redo.err)
     }
 
-    /// The step to take: the controller's, at most the largest; near touch at most the step
-    /// whose error a root singularity of the force does not hide (the plate's rule).
+    /// The step to take: the controller's, at most the largest; near touch and separation at
+    /// most the rules' ([`singular_cap`]).
     fn capped_step(&self) -> f64 {
-        let mut h = self.h.min(self.h_max);
-        if !self.mode.clipped && !self.mode.apart && self.singular() {
-            if self.t - self.t_touch < 2.0 * self.h_singular {
-                h = h.min(self.h_singular);
-            }
-            // Towards separation, half the time left until the overlap closes (the force's
-            // root singularity lies there too).
-            let (depth, rate) = self.ode.opening(&self.s);
-            if depth > 0.0 && rate > 0.0 {
-                h = h.min((0.5 * depth / rate).max(self.h_singular));
-            }
-        }
-        h.max(1e-14 * self.h_max)
-    }
-
-    /// Whether the normal force has a root singularity at touch and separation (the area and
-    /// Hertz laws; the linear law's force is smooth there).
-    fn singular(&self) -> bool {
-        !matches!(self.ode.pair.law.scene.normal_law, NormalLaw::Linear { .. })
-    }
-
-    /// The step's scaled error norm, the embedded estimate understating a step from touch by
-    /// the tableau's factor (`root_error_ratio`).
-    fn error_norm(&self, step: &DenseStep<NS, NS>, h: f64) -> f64 {
-        let since = self.t - self.t_touch;
-        let factor = if self.singular() && !self.mode.apart && since < 2.0 * h {
-            let p = match self.ode.pair.law.scene.normal_law {
-                NormalLaw::Hertz { .. } => 0.25,
-                _ => 0.5,
-            };
-            root_error_ratio(p, since / h, false)
+        let h = self.h.min(self.lim.h_max);
+        if self.singular_mode() {
+            h.min(singular_cap(
+                self.fresh_touch,
+                self.ode.opening(&self.s),
+                self.lim.h_singular,
+            ))
         } else {
-            1.0
-        };
-        self.scaled_norm(&step.err) * factor
+            h
+        }
+    }
+
+    /// Whether the normal force has a root singularity at touch and separation in the current
+    /// mode: in contact and unclipped under the area and Hertz laws (the linear law's force
+    /// is smooth there).
+    fn singular_mode(&self) -> bool {
+        let law = &self.ode.pair.law.scene.normal_law;
+        !self.mode.clipped && !self.mode.apart && root_exponent(law).is_some()
     }
 
     /// The largest component of the absolute errors `err` in units of the local tolerance
@@ -327,121 +338,6 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             .filter(|&i| (i != XI || self.mode.tan == Tan::Stick) && i != WD)
             .map(|i| err[i].abs() * self.weight[i])
             .fold(0.0, f64::max)
-    }
-
-    /// Switches the mode at event `ev` and sets the algebraic part of the state.
-    fn apply(&mut self, ev: Event) {
-        let (ode, s) = (&mut self.ode, &mut self.s);
-        match ev {
-            Event::Separate => self.separate(),
-            Event::Touch => {
-                self.mode = Mode {
-                    clipped: false,
-                    apart: false,
-                    tan: Tan::None,
-                };
-                s[XI] = 0.0;
-                let probe;
-                (self.mode.tan, probe) = ode.mode_after_touch(&self.mode, s, self.probe_dt);
-                self.touch_probe = Some(probe);
-                self.t_touch = self.t;
-                self.rec.contacts += 1;
-            }
-            Event::ClipOn => {
-                self.mode = Mode {
-                    clipped: true,
-                    apart: false,
-                    tan: Tan::Free,
-                }
-            }
-            Event::ClipOff => {
-                // Still in contact, the spring takes up where the clip left it: carrying the
-                // dashpot's force alone, no tangential force (docs/model.md, section 5), as
-                // on the plate and in the fixed loops. Reset to 0 instead, the dashpot's
-                // full force acted at once: twin 120-gons (linear law, mu 10, 85 deg) ended
-                // 0.038 apart in e_T from Gear-5, which converges to this.
-                let clipped = ode.eval_new(&self.mode, s).1;
-                s[XI] = ode.slipping_xi(&clipped);
-                self.mode.clipped = false;
-                self.mode.tan = ode.initial_tan(&self.mode, s);
-            }
-            Event::ToSlip => {
-                let e = ode.eval_new(&self.mode, s).1;
-                self.mode.tan = Tan::Slip(e.trial.signum());
-                self.rec.slip_events += 1;
-            }
-            Event::ToStick => {
-                let e = ode.eval_new(&self.mode, s).1;
-                s[XI] = ode.slipping_xi(&e);
-                self.mode.tan = Tan::Stick;
-            }
-            Event::Springs => self.switch_springs(),
-        }
-    }
-
-    /// The held springs switch (a corner enters or leaves the other body, or turns to another
-    /// edge): the normal force jumps by a corner's dashpot, and the springs' resultant, which
-    /// is the normal, turns, and the tangential velocity with it. The tangential spring goes
-    /// through the switch unchanged (a slip's at its slipping elongation), and the mode is
-    /// decided again on the new side: a slip sticks where its trial force lies inside the new
-    /// cone, a stick slips where it lies outside (the continuous limit of the stepped law,
-    /// section 5, to which Gear-5 converges). Where no force changes (a corner turning to
-    /// another edge) the mode is kept, round-off being no reason to switch. Sticking only
-    /// where a corner entered and keeping the spring's force instead of its elongation, this
-    /// path and Gear-5 converged to answers 0.002 to 0.04 apart in e_T (twin squares and
-    /// 120-gons, damped, mu 0.5 and 0.3), and the order of a slip's end and a switch located
-    /// together decided the answer (a square pair and its copy ten times as large 5e-5 apart).
-    fn switch_springs(&mut self) {
-        let before = self.ode.eval_new(&self.mode, &self.s).1;
-        let q = [self.s[X], self.s[Y], self.s[4], self.s[6]];
-        self.ode.held = self.ode.geometry.held_springs(&q);
-        if self.mode.apart {
-            return;
-        }
-        if self.mode.clipped {
-            self.release_a_clip(before.f_raw);
-            return;
-        }
-        let slipping = match self.mode.tan {
-            Tan::Slip(_) => true,
-            Tan::Stick => false,
-            Tan::None | Tan::Free => return,
-        };
-        if slipping {
-            self.s[XI] = self.ode.slipping_xi(&before);
-        }
-        let stick = Mode {
-            tan: Tan::Stick,
-            ..self.mode
-        };
-        let after = self.ode.eval_new(&stick, &self.s).1;
-        let (trial, cone) = (after.trial.abs(), self.ode.mu * (after.f_el + after.f_d));
-        if slipping && cone > trial * (1.0 + 1e-9) {
-            self.mode.tan = Tan::Stick;
-        } else if slipping && self.ode.event_value(&self.mode, Event::ToStick, &self.s) > 0.0 {
-            // On the cone, and sticking would move inside it (its rates changed with the
-            // springs): the slip ends here. Its event, positive from the start of the next step,
-            // fires on its value at the step's end, and a stick shorter than that step went
-            // unseen (twin 120-gons, elastic, mu 0.3, 20 deg: 2e-5 off at tol 1e-8).
-            self.apply(Event::ToStick);
-        } else if !slipping && trial > cone * (1.0 + 1e-9) {
-            self.mode.tan = Tan::Slip(after.trial.signum());
-            self.rec.slip_events += 1;
-        }
-    }
-
-    /// A clipped force that a switch of the springs turned to pushing (an entering corner's
-    /// dashpot, or a leaving corner's pull gone; `before` the force before the switch) is
-    /// released there. Left to the clip's event, positive from the start of the next step, the
-    /// release went unseen where the push ended within that step (the event fires on its
-    /// value at the step's end): twin 120-gons (damped, mu 0.3, 20 deg) with a largest step of
-    /// 1 t_ref ended 0.035 from the reference in e_N at every tol, err_est 2 tol.
-    fn release_a_clip(&mut self, before: f64) {
-        let after = self.ode.eval_new(&self.mode, &self.s).1.f_raw;
-        // A jump beyond round-off: at a corner turning to another edge the force is unchanged.
-        if after > 0.0 && after - before > 1e-9 * (after.abs() + before.abs()) {
-            self.apply(Event::ClipOff);
-        }
     }
 
     /// Restores the pair's angular momentum after a step: the step's polynomial does not keep
@@ -456,25 +352,6 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         }
     }
 
-    /// Ends a slip whose force has turned with the sliding (s v_t > 0 past a margin of the
-    /// speed) at the end of a step: the rate test of `ToStick` samples a sign change that a
-    /// turning contact frame (bodies with corners) can carry through within one step, and a
-    /// slip left on would feed the motion. The contact sticks at its slipping elongation,
-    /// from where sticking moves the spring's force inside the cone.
-    fn end_a_reversed_slip(&mut self) {
-        let Tan::Slip(sg) = self.mode.tan else {
-            return;
-        };
-        if !G::CORNERS {
-            return;
-        }
-        let e = self.ode.eval_new(&self.mode, &self.s).1;
-        if sg * e.v_t > self.slip_margin {
-            self.s[XI] = self.ode.slipping_xi(&e);
-            self.mode.tan = Tan::Stick;
-        }
-    }
-
     /// The time spent in contact so far (s): the budget's measure (flights between contacts
     /// do not count).
     fn contact_elapsed(&self) -> f64 {
@@ -486,30 +363,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.rec.contact_time + ongoing
     }
 
-    /// A contact ends: round bodies separate for good; bodies with corners fly apart, their
-    /// flight skipped up to where they might touch again, or the impact ends.
-    fn separate(&mut self) {
-        self.rec.contact_time += self.t - self.t_touch;
-        let s = &mut self.s;
-        let d = s[X].hypot(s[Y]);
-        self.n_sep = [s[X] / d, s[Y] / d];
-        if !G::CORNERS {
-            self.separated = true;
-            return;
-        }
-        self.mode = Mode {
-            clipped: false,
-            apart: true,
-            tan: Tan::None,
-        };
-        // Apart, no spring acts; the next touch holds its own (`mode_after_touch`).
-        self.ode.held.springs.clear();
-        self.fly();
-    }
-
     /// Apart: jumps the free flight (the plate's, [`flight`]), each advance counted as a
     /// step; ends the impact when the bodies can never touch again.
-    fn fly(&mut self) {
+    pub(super) fn fly(&mut self) {
         let s = &mut self.s;
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
@@ -518,8 +374,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let geometry = &self.ode.geometry;
         let at = |t: f64| -> [f64; 4] { std::array::from_fn(|i| q[i] + v[i] * t) };
         let gap = |t: f64| -geometry.signed_depth(&at(t));
-        let left = self.rec.step_budget.saturating_sub(self.attempts);
-        let (jump, advances) = flight::jump(gap, approach, self.h_max, left);
+        let left = self.lim.max_steps.saturating_sub(self.attempts);
+        let (jump, advances) = flight::jump(gap, approach, self.lim.h_max, left);
         let t_jump = match jump {
             Jump::Stay => return,
             Jump::To(t) => t,
@@ -543,11 +399,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             s[X] * s[GX] + s[Y] * s[GY]
         };
         let (a, b) = (g_n(0.0), g_n(theta));
-        let mut at = vec![theta];
-        if a < 0.0 && b > 0.0 {
-            at.push(roots::bracket(g_n, (0.0, a), (theta, b), 1e-10 * theta).0);
-        }
-        for th in at {
+        let at = [Some(theta), turning_point(g_n, a, (theta, b))];
+        for th in at.into_iter().flatten() {
             let e = self.ode.eval_new(&self.mode, &step.at(th)).1;
             self.rec.max_depth = self.rec.max_depth.max(e.depth);
             self.rec.max_area = self.rec.max_area.max(e.area);
@@ -586,8 +439,19 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             n_sep,
         };
         rec.close(&Bodies::Pair(self.ode.pair), &self.init, &end);
-        rec.err_est = Some(error_estimate(&self.acc, &self.init, self.ode.pair));
+        let (acc, pair) = (&self.acc, self.ode.pair);
+        let spins = [(acc.of(W1), pair.particle.r), (acc.of(W2), pair.r2)];
+        rec.err_est = Some(error_estimate(&self.init, (acc.of(GX), acc.of(GY)), spins));
         self.rec = rec;
         self.rec
+    }
+}
+
+/// The kind of a switch, for the chatter count.
+fn switch_kind(ev: Event) -> SwitchKind {
+    match ev {
+        Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
+        Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
+        _ => SwitchKind::Other,
     }
 }

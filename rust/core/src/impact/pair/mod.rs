@@ -4,7 +4,7 @@
 //! pair is stepped in its centre-of-mass frame on four lanes (x, y of the particle relative to
 //! the partner, phi1, phi2) until the bodies separate for good. Round bodies cannot touch
 //! again once they move apart; bodies with corners can, until their circumscribed circles
-//! part (the plate's `impact::flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `ode`)
+//! part (the plate's `impact::flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `law`)
 //! integrate the same coordinates; both end in the one record builder, the plate's
 //! (`Record::close` in `impact/record.rs`).
 
@@ -23,8 +23,11 @@ use crate::model::{Initial, Integrator, Model, NormalLaw, Pair};
 
 mod adaptive;
 mod depth;
+mod events;
 mod global;
-mod ode;
+mod law;
+mod mode;
+mod piece;
 mod switches;
 
 /// Simulates one impact of the pair of a validated particle model whose scene has a partner.

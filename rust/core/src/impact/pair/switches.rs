@@ -2,25 +2,46 @@
 //! switch inside an accepted step, located on the step's dense output by Brent's method; stick
 //! and slip also sampled inside the step, by the plate's rule.
 
-use super::ode::{Event, Mode, PairOde, NS};
+use super::law::PairOde;
+use super::piece::{Event, Mode, NS};
 use crate::geometry::pair::PairGeometry;
-use crate::impact::adaptive::{sampled_first_switch, TANGENTIAL_PARTS};
+use crate::impact::adaptive::{
+    first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
+};
 use crate::integrate::dopri::DenseStep;
-use crate::numerics::roots;
 
-/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event);
-/// `chattering`: the switches that chatter (slip -> stick, clip off) are not looked for.
+/// To what fraction of its step a switch is located.
+pub(super) const SWITCH_PRECISION: f64 = 1e-12;
+
+/// The switches a step does not look for, where they chattered (the adaptive rules'
+/// remedies, `Chatter`).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Ignored {
+    /// Stick -> slip and slip -> stick.
+    pub(super) tangential: bool,
+    /// The clip switching off (the force back on).
+    pub(super) clip: bool,
+    /// Every switch (so many pieces of zero length in a row).
+    pub(super) all: bool,
+}
+
+/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event),
+/// the `ignored` switches left out.
 pub(super) fn first_switch<G: PairGeometry>(
     ode: &PairOde<'_, G>,
     m: &Mode,
     step: &DenseStep<NS, NS>,
-    chattering: bool,
+    ignored: Ignored,
 ) -> Option<(f64, Event)> {
+    if ignored.all {
+        return None;
+    }
     let g = |ev: Event, th: f64| ode.event_value(m, ev, &step.at(th));
     let mut first: Option<(f64, Event)> = None;
     let mut parting = None;
     for ev in ode.candidates(m) {
-        if chattering && matches!(ev, Event::ToStick | Event::ClipOff) {
+        let tangential = matches!(ev, Event::ToSlip | Event::ToStick);
+        if (ignored.tangential && tangential) || (ignored.clip && ev == Event::ClipOff) {
             continue;
         }
         let found = if matches!(ev, Event::ToSlip | Event::ToStick) {
@@ -53,10 +74,10 @@ pub(super) fn first_switch<G: PairGeometry>(
 /// parting, but past it no overlap, and no force, is left, so the step's end cannot show it.
 /// Sampled towards the parting, densest there (the linear law pulls for c_n / k_n before it).
 fn clip_before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
-    let pulling = (1..=24)
-        .map(|k| inside * (1.0 - 0.5f64.powi(k)))
-        .find(|&th| g(th) > 0.0)?;
-    switch_in(g, pulling).map(|(_, th)| th)
+    let at = (1..=24).map(|k| (inside * (1.0 - 0.5f64.powi(k)), None));
+    let ((lo, g_lo), after) = first_positive_sample(&g, at)?;
+    let g_lo = g_lo.unwrap_or_else(|| g(lo));
+    Some(locate_switch(&g, (lo, g_lo), after, SWITCH_PRECISION).1)
 }
 
 /// Where a stick -> slip or slip -> stick function `g` first fires inside the step: sampled
@@ -66,12 +87,9 @@ fn clip_before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
 /// stick step and that ended before its end went unseen (a triangle on a 24-gon at mu 1.6,
 /// spinning: stuck one step early, 1.6e-5 to 6.1e-5 off at tol 1e-6 to 1e-8).
 fn tangential_switch_in(g: impl Fn(f64) -> f64) -> Option<f64> {
-    let locate = |(lo, g_lo): (f64, Option<f64>), (hi, g_hi): (f64, f64)| {
+    let locate = |(lo, g_lo): (f64, Option<f64>), hi: (f64, f64)| {
         let g_lo = g_lo.unwrap_or_else(|| g(lo));
-        if g_lo > 0.0 {
-            return lo;
-        }
-        roots::bracket(&g, (lo, g_lo), (hi, g_hi), 1e-12).1
+        locate_switch(&g, (lo, g_lo), hi, SWITCH_PRECISION).1
     };
     sampled_first_switch(TANGENTIAL_PARTS, &g, (|| g(0.0), g(1.0)), locate)
 }
@@ -83,10 +101,10 @@ fn switch_in(g: impl Fn(f64) -> f64, end: f64) -> Option<(f64, f64)> {
     if !(g1 > 0.0) {
         return None;
     }
-    let g0 = g(0.0);
-    Some(if g0 > 0.0 {
-        (0.0, 0.0)
-    } else {
-        roots::bracket(g, (0.0, g0), (end, g1), 1e-12)
-    })
+    Some(locate_switch(
+        &g,
+        (0.0, g(0.0)),
+        (end, g1),
+        SWITCH_PRECISION,
+    ))
 }

@@ -1,50 +1,19 @@
-//! The pair's ODE on the adaptive path: the state, the modes of a piece (clip, stick, slip), the
-//! derivative in a mode, and the event functions that end a piece (docs/model.md, 17.5).
+//! The pair's law on the adaptive path (docs/model.md, 17.5): the derivative of the state in a
+//! mode and the forces, the error scales, the tangential mode where a contact starts, and the
+//! spring's elongation that carries a slip.
 
+use super::piece::{Eval, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
 use crate::geometry::pair::{HeldSprings, PairGeometry};
-use crate::impact::adaptive::ERR_EST_FACTOR;
+use crate::impact::adaptive::{spring_scale, velocity_scales};
 use crate::law::contact::NormalForce;
-use crate::law::pair::{dot, PairForces};
-use crate::law::StickState;
+use crate::law::pair::dot;
 use crate::model::{Initial, NormalLaw, Pair};
 use std::f64::consts::PI;
 
-/// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
-/// tangential force, and of the normal force's dashpot alone.
-pub(super) const NS: usize = 12;
-pub(super) type State = [f64; NS];
-pub(super) const X: usize = 0;
-pub(super) const Y: usize = 1;
-pub(super) const GX: usize = 2;
-pub(super) const GY: usize = 3;
-pub(super) const W1: usize = 5;
-pub(super) const W2: usize = 7;
-pub(super) const XI: usize = 8;
-pub(super) const WN: usize = 9;
-pub(super) const WT: usize = 10;
-pub(super) const WD: usize = 11;
-
-/// `err_est` from the local errors `acc` of g and the spins accumulated in quadrature: the
-/// largest over e_N, e_T, e_kin and both spins in units of v / r, times the plate's factor
-/// (measured there: [`ERR_EST_FACTOR`]).
-pub(super) fn error_estimate(acc: &State, init: &Initial, pair: &Pair) -> f64 {
-    let v = init.vx.hypot(init.vy);
-    let e_t = if init.vx != 0.0 {
-        acc[GX] / init.vx.abs()
-    } else {
-        0.0
-    };
-    let e_n = acc[GY] / init.vy.abs();
-    let e_kin = acc[GX].hypot(acc[GY]) / v;
-    let spin1 = acc[W1] * pair.particle.r / v;
-    let spin2 = acc[W2] * pair.r2 / v;
-    ERR_EST_FACTOR * e_t.max(e_n).max(e_kin).max(spin1).max(spin2)
-}
-
-/// The error scale of each state component, from the impact's own scales (as the plate's
-/// adaptive path: velocities the incident ones, floored at 1e-3 of the speed; positions what
-/// they cover in t_c / pi; the spring the elongation holding the contact point's energy;
-/// works the energy).
+/// The error scale of each state component, from the impact's own scales, by the plate's rules
+/// (`velocity_scales`, `spring_scale`): the velocities' the incident ones, floored at 1e-3 of the
+/// impact's `speed`; positions what they cover in t_c / pi; the spring the elongation holding the
+/// contact point's energy; works the energy.
 pub(super) fn error_scales(
     pair: &Pair,
     init: &Initial,
@@ -53,18 +22,8 @@ pub(super) fn error_scales(
     depth: f64,
 ) -> State {
     let (r1, r2) = (pair.particle.r, pair.r2);
-    let floor = |x: f64| x.clamp(1e-3 * speed, speed);
     let t_c = t_est / PI;
-    let (vx, vy, spin) = (floor(init.vx.abs()), floor(init.vy.abs()), floor(speed));
-    let law = &pair.law;
-    let m_t = 1.0 / (1.0 / law.mass + law.r * law.r / law.inertia);
-    let (k_xi, rate, _) = law.spring(depth);
-    let k_t = k_xi * rate;
-    let xi = if k_t > 0.0 {
-        vx * (m_t / k_t).sqrt() * rate
-    } else {
-        f64::INFINITY
-    };
+    let [vx, vy, spin] = velocity_scales(init, speed);
     [
         vx * t_c,
         vy * t_c,
@@ -74,87 +33,11 @@ pub(super) fn error_scales(
         spin / r1,
         spin / r2 * t_c,
         spin / r2,
-        xi,
+        spring_scale(&pair.law, vx, depth),
         energy,
         energy,
         energy,
     ]
-}
-
-/// The tangential law of a piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Tan {
-    /// mu = 0.
-    None,
-    Stick,
-    /// F_t = mu F_n s, s = +-1.
-    Slip(f64),
-    /// The normal force is clipped: no tangential force.
-    Free,
-}
-
-/// The law that holds in a piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct Mode {
-    pub(super) clipped: bool,
-    /// Bodies with corners between contacts (no force; the piece ends at the next touch).
-    pub(super) apart: bool,
-    pub(super) tan: Tan,
-}
-
-/// The switches that end a piece; each event function is <= 0 while the piece's mode holds.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Event {
-    Separate,
-    Touch,
-    ClipOn,
-    ClipOff,
-    ToSlip,
-    ToStick,
-    /// The linear law's held vertex springs switch (docs/model.md, 17.8).
-    Springs,
-}
-
-/// What one evaluation yields besides the derivative.
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct Eval {
-    /// F_el + F_d before the clip, and its parts as they act (clipped by the mode).
-    pub(super) f_raw: f64,
-    pub(super) f_el: f64,
-    pub(super) f_d: f64,
-    pub(super) f_t: f64,
-    pub(super) trial: f64,
-    pub(super) v_t: f64,
-    pub(super) depth: f64,
-    pub(super) area: f64,
-    pub(super) n: [f64; 2],
-    /// The elastic and damping parts on the lanes (clipped by the mode) and the tangential
-    /// force's lever (`PairFrame`).
-    pub(super) el: [f64; 4],
-    pub(super) damp: [f64; 4],
-    pub(super) lever_t: [f64; 2],
-}
-
-impl Eval {
-    /// The evaluation as the fixed steps report theirs (for the trace), in mode `m`.
-    pub(super) fn forces(&self, m: &Mode) -> PairForces {
-        PairForces {
-            f_el: self.f_el,
-            f_d: self.f_d,
-            f_t: self.f_t,
-            n: self.n,
-            el: self.el,
-            damp: self.damp,
-            lever_t: self.lever_t,
-            area: self.area,
-            depth: self.depth,
-            stick: match m.tan {
-                Tan::Stick => StickState::Stick,
-                Tan::Slip(_) => StickState::Slip,
-                _ => StickState::None,
-            },
-        }
-    }
 }
 
 /// The pair's ODE.
@@ -264,80 +147,6 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let mut ds = [0.0; NS];
         let e = self.eval(m, s, &mut ds);
         (ds, e)
-    }
-
-    /// The events that can end a piece of mode `m`.
-    pub(super) fn candidates(&self, m: &Mode) -> impl Iterator<Item = Event> {
-        let apart = m.apart.then_some(Event::Touch);
-        let clip = if m.apart {
-            None
-        } else if m.clipped {
-            Some(Event::ClipOff)
-        } else {
-            Some(Event::ClipOn)
-        };
-        let tan = match m.tan {
-            Tan::Stick => Some(Event::ToSlip),
-            Tan::Slip(_) => Some(Event::ToStick),
-            _ => None,
-        };
-        let separate = (!m.apart).then_some(Event::Separate);
-        let springs = (!m.apart && self.geometry.holds_springs()).then_some(Event::Springs);
-        [apart, separate, clip, tan, springs].into_iter().flatten()
-    }
-
-    /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
-    pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
-        if ev == Event::Springs {
-            let q = [s[X], s[Y], s[4], s[6]];
-            return self.geometry.held_springs_value(&q, &self.held);
-        }
-        let e = self.eval_new(m, s).1;
-        match ev {
-            Event::Separate => -e.depth,
-            Event::Touch => e.depth,
-            Event::ClipOn => -e.f_raw,
-            Event::ClipOff => e.f_raw,
-            // Where no overlap is resolved (the touch itself) the cone is closed but no spring
-            // acts either: the touch's probe has chosen the mode (`mode_after_touch`).
-            Event::ToSlip if e.depth <= 0.0 => f64::NEG_INFINITY,
-            Event::ToSlip => {
-                // Past the cone by a margin of 1e-9 of it: a spring just set on the cone (at a
-                // slip -> stick switch) is not taken back by round-off.
-                let cap = self.mu * e.f_raw.max(0.0);
-                e.trial.abs() - cap - 1e-9 * (e.trial.abs() + cap)
-            }
-            Event::ToStick => self.to_stick_value(m, s, &e),
-            Event::Springs => unreachable!("answered above"),
-        }
-    }
-
-    /// Slip -> stick: mu dF_n/dt - s dF_trial/dt, positive where sticking would move the
-    /// trial force inside the cone: both rates taken by a forward difference along the motion
-    /// the contact would have if it stuck now (the spring at its slipping elongation, moving
-    /// as in stick), so that a slip the damper reverses ends, and the switch is consistent.
-    fn to_stick_value(&self, m: &Mode, s: &State, e: &Eval) -> f64 {
-        let Tan::Slip(sg) = m.tan else {
-            return f64::NEG_INFINITY;
-        };
-        if e.depth <= 0.0 {
-            return f64::NEG_INFINITY;
-        }
-        let h = self.fd_step;
-        let mut held = *s;
-        held[XI] = self.slipping_xi(e);
-        let stick = Mode {
-            tan: Tan::Stick,
-            ..*m
-        };
-        let (d_stick, now) = self.eval_new(&stick, &held);
-        let ahead: State = std::array::from_fn(|i| held[i] + h * d_stick[i]);
-        let later = self.eval_new(&stick, &ahead).1;
-        let dfn = (later.f_raw - now.f_raw) / h;
-        let dtrial = (later.trial - now.trial) / h;
-        let value = self.mu * dfn - sg * dtrial;
-        // Past its root by a margin of 1e-9 of its terms, so that the spring starts inside.
-        value - 1e-9 * (self.mu * dfn.abs() + dtrial.abs())
     }
 
     /// The spring's elongation that carries the slipping force: -(F_t + c_t v_t) / k_xi.

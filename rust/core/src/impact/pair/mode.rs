@@ -1,0 +1,173 @@
+//! The pair's mode at a switch on the adaptive path (docs/model.md, 17.5 and 17.8): the mode a
+//! piece continues in after an event, with the algebraic part of the state it implies (the
+//! spring's elongation), the held springs switching, and the tangential and clip decisions
+//! that follow from the state rather than from an event function.
+
+use super::adaptive::Run;
+use super::piece::{Event, Mode, Tan, X, XI, Y};
+use crate::geometry::pair::PairGeometry;
+
+impl<G: PairGeometry> Run<'_, G> {
+    /// After a step with the clip held: the end state decides the clip again.
+    pub(super) fn end_clip_hold(&mut self) {
+        if self.mode.clipped && self.ode.eval_new(&self.mode, &self.s).1.f_raw > 0.0 {
+            self.apply(Event::ClipOff);
+        }
+    }
+
+    /// Switches the mode at event `ev` and sets the algebraic part of the state.
+    pub(super) fn apply(&mut self, ev: Event) {
+        let (ode, s) = (&mut self.ode, &mut self.s);
+        match ev {
+            Event::Separate => self.separate(),
+            Event::Touch => {
+                self.mode = Mode {
+                    clipped: false,
+                    apart: false,
+                    tan: Tan::None,
+                };
+                s[XI] = 0.0;
+                let probe;
+                (self.mode.tan, probe) = ode.mode_after_touch(&self.mode, s, self.probe_dt);
+                self.touch_probe = Some(probe);
+                self.t_touch = self.t;
+                self.fresh_touch = true;
+                self.rec.contacts += 1;
+            }
+            Event::ClipOn => {
+                self.mode = Mode {
+                    clipped: true,
+                    apart: false,
+                    tan: Tan::Free,
+                }
+            }
+            Event::ClipOff => {
+                // Still in contact, the spring takes up where the clip left it: carrying the
+                // dashpot's force alone, no tangential force (docs/model.md, section 5), as
+                // on the plate and in the fixed loops. Reset to 0 instead, the dashpot's
+                // full force acted at once: twin 120-gons (linear law, mu 10, 85 deg) ended
+                // 0.038 apart in e_T from Gear-5, which converges to this.
+                let clipped = ode.eval_new(&self.mode, s).1;
+                s[XI] = ode.slipping_xi(&clipped);
+                self.mode.clipped = false;
+                self.mode.tan = ode.initial_tan(&self.mode, s);
+            }
+            Event::ToSlip => {
+                let e = ode.eval_new(&self.mode, s).1;
+                self.mode.tan = Tan::Slip(e.trial.signum());
+                self.rec.slip_events += 1;
+            }
+            Event::ToStick => {
+                let e = ode.eval_new(&self.mode, s).1;
+                s[XI] = ode.slipping_xi(&e);
+                self.mode.tan = Tan::Stick;
+            }
+            Event::Springs => self.switch_springs(),
+        }
+    }
+
+    /// The held springs switch (a corner enters or leaves the other body, or turns to another
+    /// edge): the normal force jumps by a corner's dashpot, and the springs' resultant, which
+    /// is the normal, turns, and the tangential velocity with it. The tangential spring goes
+    /// through the switch unchanged (a slip's at its slipping elongation), and the mode is
+    /// decided again on the new side: a slip sticks where its trial force lies inside the new
+    /// cone, a stick slips where it lies outside (the continuous limit of the stepped law,
+    /// section 5, to which Gear-5 converges). Where no force changes (a corner turning to
+    /// another edge) the mode is kept, round-off being no reason to switch. Sticking only
+    /// where a corner entered and keeping the spring's force instead of its elongation, this
+    /// path and Gear-5 converged to answers 0.002 to 0.04 apart in e_T (twin squares and
+    /// 120-gons, damped, mu 0.5 and 0.3), and the order of a slip's end and a switch located
+    /// together decided the answer (a square pair and its copy ten times as large 5e-5 apart).
+    fn switch_springs(&mut self) {
+        let before = self.ode.eval_new(&self.mode, &self.s).1;
+        let q = [self.s[X], self.s[Y], self.s[4], self.s[6]];
+        self.ode.held = self.ode.geometry.held_springs(&q);
+        if self.mode.apart {
+            return;
+        }
+        if self.mode.clipped {
+            self.release_a_clip(before.f_raw);
+            return;
+        }
+        let slipping = match self.mode.tan {
+            Tan::Slip(_) => true,
+            Tan::Stick => false,
+            Tan::None | Tan::Free => return,
+        };
+        if slipping {
+            self.s[XI] = self.ode.slipping_xi(&before);
+        }
+        let stick = Mode {
+            tan: Tan::Stick,
+            ..self.mode
+        };
+        let after = self.ode.eval_new(&stick, &self.s).1;
+        let (trial, cone) = (after.trial.abs(), self.ode.mu * (after.f_el + after.f_d));
+        if slipping && cone > trial * (1.0 + 1e-9) {
+            self.mode.tan = Tan::Stick;
+        } else if slipping && self.ode.event_value(&self.mode, Event::ToStick, &self.s) > 0.0 {
+            // On the cone, and sticking would move inside it (its rates changed with the
+            // springs): the slip ends here. Its event, positive from the start of the next step,
+            // fires on its value at the step's end, and a stick shorter than that step went
+            // unseen (twin 120-gons, elastic, mu 0.3, 20 deg: 2e-5 off at tol 1e-8).
+            self.apply(Event::ToStick);
+        } else if !slipping && trial > cone * (1.0 + 1e-9) {
+            self.mode.tan = Tan::Slip(after.trial.signum());
+            self.rec.slip_events += 1;
+        }
+    }
+
+    /// A clipped force that a switch of the springs turned to pushing (an entering corner's
+    /// dashpot, or a leaving corner's pull gone; `before` the force before the switch) is
+    /// released there. Left to the clip's event, positive from the start of the next step, the
+    /// release went unseen where the push ended within that step (the event fires on its
+    /// value at the step's end): twin 120-gons (damped, mu 0.3, 20 deg) with a largest step of
+    /// 1 t_ref ended 0.035 from the reference in e_N at every tol, err_est 2 tol.
+    fn release_a_clip(&mut self, before: f64) {
+        let after = self.ode.eval_new(&self.mode, &self.s).1.f_raw;
+        // A jump beyond round-off: at a corner turning to another edge the force is unchanged.
+        if after > 0.0 && after - before > 1e-9 * (after.abs() + before.abs()) {
+            self.apply(Event::ClipOff);
+        }
+    }
+
+    /// Ends a slip whose force has turned with the sliding (s v_t > 0 past a margin of the
+    /// speed) at the end of a step: the rate test of `ToStick` samples a sign change that a
+    /// turning contact frame (bodies with corners) can carry through within one step, and a
+    /// slip left on would feed the motion. The contact sticks at its slipping elongation,
+    /// from where sticking moves the spring's force inside the cone.
+    pub(super) fn end_a_reversed_slip(&mut self) {
+        let Tan::Slip(sg) = self.mode.tan else {
+            return;
+        };
+        if !G::CORNERS {
+            return;
+        }
+        let e = self.ode.eval_new(&self.mode, &self.s).1;
+        if sg * e.v_t > self.slip_margin {
+            self.s[XI] = self.ode.slipping_xi(&e);
+            self.mode.tan = Tan::Stick;
+        }
+    }
+
+    /// A contact ends: round bodies separate for good; bodies with corners fly apart, their
+    /// flight skipped up to where they might touch again, or the impact ends.
+    fn separate(&mut self) {
+        self.rec.contact_time += self.t - self.t_touch;
+        let s = &mut self.s;
+        let d = s[X].hypot(s[Y]);
+        self.n_sep = [s[X] / d, s[Y] / d];
+        if !G::CORNERS {
+            self.separated = true;
+            return;
+        }
+        self.mode = Mode {
+            clipped: false,
+            apart: true,
+            tan: Tan::None,
+        };
+        // Apart, no spring acts; the next touch holds its own (`mode_after_touch`).
+        self.ode.held.springs.clear();
+        self.fly();
+    }
+}

@@ -1,0 +1,97 @@
+//! What holds in one piece of a pair's impact on the adaptive path (docs/model.md, 17.5): the
+//! ODE's state, the modes of a piece (clip, stick, slip, apart), the switches that end one, and
+//! what an evaluation of the law yields. Plain types, using no other part of the pair's path.
+
+use crate::law::pair::PairForces;
+use crate::law::StickState;
+
+/// x, y, g_x, g_y, phi1, omega1, phi2, omega2, xi, then the works of the normal and the
+/// tangential force, and of the normal force's dashpot alone.
+pub(super) const NS: usize = 12;
+pub(super) type State = [f64; NS];
+pub(super) const X: usize = 0;
+pub(super) const Y: usize = 1;
+pub(super) const GX: usize = 2;
+pub(super) const GY: usize = 3;
+pub(super) const W1: usize = 5;
+pub(super) const W2: usize = 7;
+pub(super) const XI: usize = 8;
+pub(super) const WN: usize = 9;
+pub(super) const WT: usize = 10;
+pub(super) const WD: usize = 11;
+
+/// The tangential law of a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Tan {
+    /// mu = 0.
+    None,
+    Stick,
+    /// F_t = mu F_n s, s = +-1.
+    Slip(f64),
+    /// The normal force is clipped: no tangential force.
+    Free,
+}
+
+/// The law that holds in a piece.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct Mode {
+    pub(super) clipped: bool,
+    /// Bodies with corners between contacts (no force; the piece ends at the next touch).
+    pub(super) apart: bool,
+    pub(super) tan: Tan,
+}
+
+/// The switches that end a piece; each event function is <= 0 while the piece's mode holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Event {
+    Separate,
+    Touch,
+    ClipOn,
+    ClipOff,
+    ToSlip,
+    ToStick,
+    /// The linear law's held vertex springs switch (docs/model.md, 17.8).
+    Springs,
+}
+
+/// What one evaluation yields besides the derivative.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Eval {
+    /// F_el + F_d before the clip, and its parts as they act (clipped by the mode).
+    pub(super) f_raw: f64,
+    pub(super) f_el: f64,
+    pub(super) f_d: f64,
+    pub(super) f_t: f64,
+    pub(super) trial: f64,
+    pub(super) v_t: f64,
+    pub(super) depth: f64,
+    pub(super) area: f64,
+    pub(super) n: [f64; 2],
+    /// The elastic and damping parts on the lanes (clipped by the mode) and the tangential
+    /// force's lever (`PairFrame`).
+    pub(super) el: [f64; 4],
+    pub(super) damp: [f64; 4],
+    pub(super) lever_t: [f64; 2],
+}
+
+impl Eval {
+    /// The evaluation as the fixed steps report theirs (for the trace), in mode `m`.
+    pub(super) fn forces(&self, m: &Mode) -> PairForces {
+        PairForces {
+            f_el: self.f_el,
+            f_d: self.f_d,
+            f_t: self.f_t,
+            n: self.n,
+            el: self.el,
+            damp: self.damp,
+            lever_t: self.lever_t,
+            area: self.area,
+            depth: self.depth,
+            stick: match m.tan {
+                Tan::Stick => StickState::Stick,
+                Tan::Slip(_) => StickState::Slip,
+                _ => StickState::None,
+            },
+        }
+    }
+}
