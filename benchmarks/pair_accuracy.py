@@ -14,6 +14,7 @@ first compares the reference with itself at a fifth of its largest step.
 
     python benchmarks/pair_accuracy.py --pairs 120 --seed 1
     python benchmarks/pair_accuracy.py --quick          # 24 pairs, tol 1e-4 and 1e-6
+    python benchmarks/pair_accuracy.py --seeds 8        # 120 pairs from each of seeds 1 ... 8
     python benchmarks/pair_accuracy.py --pairs 120 --tols 1e-4 1e-6 1e-8 --discs --check-reference
     python benchmarks/pair_accuracy.py --linear-grid --tols 1e-4 1e-6 1e-8
 """
@@ -147,6 +148,8 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--pairs", type=int, default=120)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--seeds", type=int, default=1,
+                    help="draw --pairs pairs from each of the seeds seed ... seed + seeds - 1")
     ap.add_argument("--tols", type=float, nargs="*", default=[1e-4, 1e-5, 1e-6, 1e-7, 1e-8])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--discs", action="store_true", help="a disc for one body in ten")
@@ -157,8 +160,11 @@ def main() -> None:
     args = ap.parse_args()
     if args.quick:
         args.pairs, args.tols = 24, [1e-4, 1e-6]
-    rng = np.random.default_rng(args.seed)
-    draws = linear_grid() if args.linear_grid else [draw(rng, args.discs) for _ in range(args.pairs)]
+    draws = linear_grid() if args.linear_grid else [
+        draw(rng, args.discs)
+        for rng in (np.random.default_rng(args.seed + k) for k in range(args.seeds))
+        for _ in range(args.pairs)
+    ]
     refs, refused, slow = [], 0, []
     for p in draws:
         try:
