@@ -57,6 +57,8 @@ pub(super) struct PairOde<'a, G> {
 impl<G: PairGeometry> PairOde<'_, G> {
     /// The derivative `ds` of state `s` in mode `m`, and the forces.
     pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
+        #[cfg(feature = "bench-counters")]
+        crate::counters::count_pair_law_evaluation();
         let law = &self.pair.law;
         let q = [s[X], s[Y], s[4], s[6]];
         let g = [s[GX], s[GY]];
