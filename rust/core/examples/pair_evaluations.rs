@@ -30,7 +30,10 @@ fn main() {
         ("disc on 12-gon", pair(&round, &twelve)),
     ];
     let init = Initial::from_angle(2.0 * 0.0357, 45.0, 0.0, 0.0);
-    println!("{:<16} {:>6} {:>12} {:>10}", "pair", "steps", "evaluations", "per step");
+    println!(
+        "{:<16} {:>6} {:>12} {:>10}",
+        "pair", "steps", "evaluations", "per step"
+    );
     for (name, scene) in scenes {
         let before = pair_law_evaluations();
         let steps = simulate(&scene, &init).expect("a valid impact").steps;

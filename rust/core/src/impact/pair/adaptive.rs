@@ -14,7 +14,7 @@
 
 use super::law::{error_scales, PairOde};
 use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
-use super::switches::{first_switch, Ignored, SWITCH_PRECISION};
+use super::switches::{first_switch, Ignored, StepSamples, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -213,8 +213,10 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             Verdict::NonFinite => return Err(StopReason::NonFinite),
         };
         let ignored = std::mem::take(&mut self.ignored);
-        let first = first_switch(&self.ode, &self.mode, step, ignored);
+        let samples = StepSamples::new(&self.ode, self.mode, step);
+        let first = first_switch(&samples, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
+        let extremes = (theta * h > 0.0).then(|| extremes_in(&samples, theta));
         let (s_new, err_taken) = if theta >= 1.0 {
             (step.y1, step.err)
         } else if theta * h <= 0.0 {
@@ -230,9 +232,10 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
         let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
         self.chatter.count(switch, (theta * h, h), self.lim.tiny);
-        if theta * h > 0.0 {
+        if let Some([depth, area]) = extremes {
             // Pieces of zero length are no steps (the plate's count).
-            self.track_extremes(step, theta);
+            self.rec.max_depth = self.rec.max_depth.max(depth);
+            self.rec.max_area = self.rec.max_area.max(area);
             self.fresh_touch = false;
             self.steps += 1;
         }
@@ -391,22 +394,6 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.attempts += advances;
     }
 
-    /// The largest overlap and area inside the taken part of the step: at its end, and where
-    /// the normal velocity turns (the deepest point), located on the dense output.
-    fn track_extremes(&mut self, step: &DenseStep<NS, NS>, theta: f64) {
-        let g_n = |th: f64| {
-            let s = step.at(th);
-            s[X] * s[GX] + s[Y] * s[GY]
-        };
-        let (a, b) = (g_n(0.0), g_n(theta));
-        let at = [Some(theta), turning_point(g_n, a, (theta, b))];
-        for th in at.into_iter().flatten() {
-            let e = self.ode.eval_new(&self.mode, &step.at(th)).1;
-            self.rec.max_depth = self.rec.max_depth.max(e.depth);
-            self.rec.max_area = self.rec.max_area.max(e.area);
-        }
-    }
-
     fn push(&self, tr: &mut Trace) {
         let s = &self.s;
         let f = self.ode.eval_new(&self.mode, s).1.forces(&self.mode);
@@ -454,4 +441,23 @@ fn switch_kind(ev: Event) -> SwitchKind {
         Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
         _ => SwitchKind::Other,
     }
+}
+
+/// The largest overlap and area inside the part of the step of `samples` up to `theta`: at
+/// its end, and where the normal velocity turns (the deepest point), located on the dense
+/// output.
+fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) -> [f64; 2] {
+    let step = samples.step;
+    let g_n = |th: f64| {
+        let s = step.at(th);
+        s[X] * s[GX] + s[Y] * s[GY]
+    };
+    let (a, b) = (g_n(0.0), g_n(theta));
+    let at = [Some(theta), turning_point(g_n, a, (theta, b))];
+    let mut most = [f64::NEG_INFINITY; 2];
+    for th in at.into_iter().flatten() {
+        let e = samples.at(th).1;
+        most = [most[0].max(e.depth), most[1].max(e.area)];
+    }
+    most
 }

@@ -28,11 +28,23 @@ impl<G: PairGeometry> PairOde<'_, G> {
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
     pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        self.event_value_with(m, ev, s, || self.eval_new(m, s).1)
+    }
+
+    /// [`Self::event_value`], the law's evaluation at `s` in mode `m` given by `eval` (called
+    /// only where the event needs it: a step's candidates share one evaluation per sample).
+    pub(super) fn event_value_with(
+        &self,
+        m: &Mode,
+        ev: Event,
+        s: &State,
+        eval: impl FnOnce() -> Eval,
+    ) -> f64 {
         if ev == Event::Springs {
             let q = [s[X], s[Y], s[4], s[6]];
             return self.geometry.held_springs_value(&q, &self.held);
         }
-        let e = self.eval_new(m, s).1;
+        let e = eval();
         match ev {
             Event::Separate => -e.depth,
             Event::Touch => e.depth,

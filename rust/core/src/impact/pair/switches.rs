@@ -3,12 +3,13 @@
 //! and slip also sampled inside the step, by the plate's rule.
 
 use super::law::PairOde;
-use super::piece::{Event, Mode, NS};
+use super::piece::{Eval, Event, Mode, State, NS};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
 use crate::integrate::dopri::DenseStep;
+use std::cell::RefCell;
 
 /// To what fraction of its step a switch is located.
 pub(super) const SWITCH_PRECISION: f64 = 1e-12;
@@ -25,18 +26,64 @@ pub(super) struct Ignored {
     pub(super) all: bool,
 }
 
-/// The first switch of mode `m` inside the accepted `step`: (fraction of the step, event),
-/// the `ignored` switches left out.
+/// The law evaluated at fractions of one accepted step in the step's mode, each fraction once:
+/// the candidate events all sample the step's end (and its thirds, its start where one fired),
+/// and the extremes its end again; the law is a function of the state and mode alone, so an
+/// evaluation is reused, never redone (two discs evaluated it 18 times per step, 7 of them
+/// for the same fractions again).
+pub(super) struct StepSamples<'s, 'a, G> {
+    pub(super) ode: &'s PairOde<'a, G>,
+    pub(super) mode: Mode,
+    pub(super) step: &'s DenseStep<NS, NS>,
+    /// The fractions evaluated (their bits), with the state and the evaluation there.
+    seen: RefCell<Vec<(u64, State, Eval)>>,
+}
+
+impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
+    pub(super) fn new(ode: &'s PairOde<'a, G>, mode: Mode, step: &'s DenseStep<NS, NS>) -> Self {
+        StepSamples {
+            ode,
+            mode,
+            step,
+            seen: RefCell::new(Vec::with_capacity(16)),
+        }
+    }
+
+    /// The state at fraction `th` of the step and the law's evaluation there.
+    pub(super) fn at(&self, th: f64) -> (State, Eval) {
+        let key = th.to_bits();
+        if let Some(&(_, s, e)) = self.seen.borrow().iter().find(|(k, ..)| *k == key) {
+            return (s, e);
+        }
+        let s = self.step.at(th);
+        let e = self.ode.eval_new(&self.mode, &s).1;
+        self.seen.borrow_mut().push((key, s, e));
+        (s, e)
+    }
+
+    /// The value of event `ev`'s function at fraction `th` of the step
+    /// ([`PairOde::event_value`]).
+    fn event_value(&self, ev: Event, th: f64) -> f64 {
+        if ev == Event::Springs {
+            // The held springs' function reads the positions alone.
+            return self.ode.event_value(&self.mode, ev, &self.step.at(th));
+        }
+        let (s, e) = self.at(th);
+        self.ode.event_value_with(&self.mode, ev, &s, || e)
+    }
+}
+
+/// The first switch of the step's mode inside the accepted step of `samples`: (fraction of
+/// the step, event), the `ignored` switches left out.
 pub(super) fn first_switch<G: PairGeometry>(
-    ode: &PairOde<'_, G>,
-    m: &Mode,
-    step: &DenseStep<NS, NS>,
+    samples: &StepSamples<'_, '_, G>,
     ignored: Ignored,
 ) -> Option<(f64, Event)> {
     if ignored.all {
         return None;
     }
-    let g = |ev: Event, th: f64| ode.event_value(m, ev, &step.at(th));
+    let (ode, m) = (samples.ode, &samples.mode);
+    let g = |ev: Event, th: f64| samples.event_value(ev, th);
     let mut first: Option<(f64, Event)> = None;
     let mut parting = None;
     for ev in ode.candidates(m) {
