@@ -57,16 +57,13 @@ pub(super) struct PairOde<'a, G> {
 impl<G: PairGeometry> PairOde<'_, G> {
     /// The derivative `ds` of state `s` in mode `m`, and the forces.
     pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
-        self.eval_from(m, s, self.contact(m, s), ds)
-    }
-
-    /// The contact at state `s` in mode `m`: its frame and normal force (the costly part of an
-    /// evaluation: the overlap), which read the positions and velocities alone.
-    pub(super) fn contact(&self, m: &Mode, s: &State) -> Eval {
         #[cfg(feature = "bench-counters")]
         crate::counters::count_pair_law_evaluation();
+        let law = &self.pair.law;
         let q = [s[X], s[Y], s[4], s[6]];
+        let g = [s[GX], s[GY]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
+        let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
         let mut e = Eval::default();
         match self.geometry.frame_held(&q, &self.held) {
             Some(fr) => {
@@ -89,17 +86,6 @@ impl<G: PairGeometry> PairOde<'_, G> {
                 e.depth = self.geometry.signed_depth(&q);
             }
         }
-        e
-    }
-
-    /// [`Self::eval`] from the `contact` at `s` in a mode of the same clip and contact as `m`
-    /// (its tangential law and the spring's elongation may differ).
-    pub(super) fn eval_from(&self, m: &Mode, s: &State, contact: Eval, ds: &mut State) -> Eval {
-        let law = &self.pair.law;
-        let g = [s[GX], s[GY]];
-        let v = [s[GX], s[GY], s[W1], s[W2]];
-        let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
-        let mut e = contact;
         let n = e.n;
         let t = [n[1], -n[0]];
         let (g_n, g_t) = (n[0] * g[0] + n[1] * g[1], t[0] * g[0] + t[1] * g[1]);
