@@ -14,7 +14,7 @@
 
 use super::law::{error_scales, PairOde};
 use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
-use super::switches::{first_switch, Ignored, StepSamples, SWITCH_PRECISION};
+use super::switches::{first_switch, Ignored, KeptSamples, StepSamples, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -29,6 +29,7 @@ use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
@@ -109,6 +110,8 @@ pub(super) struct Run<'a, G> {
     pub(super) y0: f64,
     pub(super) n_sep: [f64; 2],
     pub(super) rec: Record,
+    /// The law's evaluations a step shares between its events and extremes.
+    pub(super) kept: RefCell<KeptSamples>,
 }
 
 impl<'a, G: PairGeometry> Run<'a, G> {
@@ -192,6 +195,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                 step_budget: max_steps,
                 ..Record::default()
             },
+            kept: RefCell::default(),
         }
     }
 
@@ -213,7 +217,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             Verdict::NonFinite => return Err(StopReason::NonFinite),
         };
         let ignored = std::mem::take(&mut self.ignored);
-        let samples = StepSamples::new(&self.ode, self.mode, step);
+        let samples = StepSamples::new(&self.ode, self.mode, step, &self.kept);
         let first = first_switch(&samples, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
         let extremes = (theta * h > 0.0).then(|| extremes_in(&samples, theta));
@@ -456,7 +460,7 @@ fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) ->
     let at = [Some(theta), turning_point(g_n, a, (theta, b))];
     let mut most = [f64::NEG_INFINITY; 2];
     for th in at.into_iter().flatten() {
-        let e = samples.at(th).1;
+        let e = samples.eval_at(th, &step.at(th));
         most = [most[0].max(e.depth), most[1].max(e.area)];
     }
     most

@@ -26,39 +26,73 @@ pub(super) struct Ignored {
     pub(super) all: bool,
 }
 
-/// The law evaluated at fractions of one accepted step in the step's mode, each fraction once:
-/// the candidate events all sample the step's end (and its thirds, its start where one fired),
-/// and the extremes its end again; the law is a function of the state and mode alone, so an
-/// evaluation is reused, never redone (two discs evaluated it 18 times per step, 7 of them
-/// for the same fractions again).
+/// The law evaluated at fractions of one accepted step in the step's mode, each shared fraction
+/// once: every candidate event samples the step's end, and the extremes sample it again (or
+/// the switch located last); the law is a function of the state and mode alone, so an
+/// evaluation is reused, never redone (two discs evaluated it 18 times per step, 3 of them
+/// again).
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
     pub(super) step: &'s DenseStep<NS, NS>,
-    /// The fractions evaluated (their bits), with the state and the evaluation there.
-    seen: RefCell<Vec<(u64, State, Eval)>>,
+    kept: &'s RefCell<KeptSamples>,
 }
 
+/// The evaluations a step keeps, without allocating: the step's end in the first slot, the
+/// latest others in turn after it; held by the run and emptied for each step (a disc's law
+/// costs about as much as copying them).
+#[derive(Default)]
+pub(super) struct KeptSamples {
+    /// The fractions evaluated (their bits) with the evaluation there, and how many were.
+    seen: [(u64, Eval); SAMPLES_KEPT],
+    count: usize,
+}
+
+/// How many evaluations of a step [`KeptSamples`] holds.
+const SAMPLES_KEPT: usize = 4;
+
 impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
-    pub(super) fn new(ode: &'s PairOde<'a, G>, mode: Mode, step: &'s DenseStep<NS, NS>) -> Self {
+    pub(super) fn new(
+        ode: &'s PairOde<'a, G>,
+        mode: Mode,
+        step: &'s DenseStep<NS, NS>,
+        kept: &'s RefCell<KeptSamples>,
+    ) -> Self {
+        kept.borrow_mut().count = 0;
         StepSamples {
             ode,
             mode,
             step,
-            seen: RefCell::new(Vec::with_capacity(16)),
+            kept,
         }
     }
 
-    /// The state at fraction `th` of the step and the law's evaluation there.
-    pub(super) fn at(&self, th: f64) -> (State, Eval) {
-        let key = th.to_bits();
-        if let Some(&(_, s, e)) = self.seen.borrow().iter().find(|(k, ..)| *k == key) {
-            return (s, e);
+    /// The law's evaluation at fraction `th` of the step.
+    pub(super) fn eval_at(&self, th: f64, s: &State) -> Eval {
+        if !G::CORNERS {
+            return self.ode.eval_new(&self.mode, s).1;
         }
-        let s = self.step.at(th);
-        let e = self.ode.eval_new(&self.mode, &s).1;
-        self.seen.borrow_mut().push((key, s, e));
-        (s, e)
+        let key = th.to_bits();
+        let mut kept = self.kept.borrow_mut();
+        let count = kept.count;
+        let seen = &mut kept.seen;
+        if let Some((_, e)) = seen[..count.min(SAMPLES_KEPT)]
+            .iter()
+            .find(|(k, _)| *k == key)
+        {
+            return *e;
+        }
+        let e = self.ode.eval_new(&self.mode, s).1;
+        // The first fraction sampled is the step's end (every candidate's first): kept; the
+        // latest others in turn in the slots after it.
+        let slot = if count < SAMPLES_KEPT {
+            count
+        } else {
+            1 + (count - 1) % (SAMPLES_KEPT - 1)
+        };
+        seen[slot] = (key, e);
+        kept.count = count + 1;
+        e
     }
 
     /// The value of event `ev`'s function at fraction `th` of the step
@@ -68,8 +102,9 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
             // The held springs' function reads the positions alone.
             return self.ode.event_value(&self.mode, ev, &self.step.at(th));
         }
-        let (s, e) = self.at(th);
-        self.ode.event_value_with(&self.mode, ev, &s, || e)
+        let s = self.step.at(th);
+        self.ode
+            .event_value_with(&self.mode, ev, &s, || self.eval_at(th, &s))
     }
 }
 
