@@ -29,8 +29,9 @@ pub(super) struct Ignored {
 /// The law evaluated at fractions of one accepted step in the step's mode, each shared fraction
 /// once: every candidate event samples the step's end, and the extremes sample it again (or
 /// the switch located last); the law is a function of the state and mode alone, so an
-/// evaluation is reused, never redone (two discs evaluated it 18 times per step, 3 of them
-/// again).
+/// evaluation is reused, never redone (two 12-gons evaluated it 16.7 times per step, 2.8 of
+/// them again). Round bodies evaluate afresh: their law costs less than keeping it (two discs
+/// kept theirs and ran 7 % slower with 17 % fewer evaluations).
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
@@ -39,8 +40,8 @@ pub(super) struct StepSamples<'s, 'a, G> {
 }
 
 /// The evaluations a step keeps, without allocating: the step's end in the first slot, the
-/// latest others in turn after it; held by the run and emptied for each step (a disc's law
-/// costs about as much as copying them).
+/// latest others in turn after it; held by the run and emptied for each step (a buffer built
+/// per step, or a list allocated per step, cost the disc pair more than it saved).
 #[derive(Default)]
 pub(super) struct KeptSamples {
     /// The fractions evaluated (their bits) with the evaluation there, and how many were.
