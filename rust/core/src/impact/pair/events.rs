@@ -2,7 +2,7 @@
 //! a mode, and their event functions (continuous, <= 0 while the piece's mode holds).
 
 use super::law::PairOde;
-use super::piece::{Eval, Event, Mode, State, Tan, X, XI, Y};
+use super::piece::{Eval, Event, Mode, State, Tan, NS, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
 
 impl<G: PairGeometry> PairOde<'_, G> {
@@ -82,7 +82,9 @@ impl<G: PairGeometry> PairOde<'_, G> {
             tan: Tan::Stick,
             ..*m
         };
-        let (d_stick, now) = self.eval_new(&stick, &held);
+        // Held differs from `s` in the spring alone: the contact `e` found there is its own.
+        let mut d_stick = [0.0; NS];
+        let now = self.rates(&stick, &held, *e, &mut d_stick);
         let ahead: State = std::array::from_fn(|i| held[i] + h * d_stick[i]);
         let later = self.eval_new(&stick, &ahead).1;
         let dfn = (later.f_raw - now.f_raw) / h;
