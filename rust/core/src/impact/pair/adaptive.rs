@@ -249,17 +249,22 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         if ignored.clip {
             self.end_clip_hold();
         }
+        let mut k_end = None;
         if let Some(ev) = event {
             self.apply(ev);
         } else if self.mode.apart {
             self.fly();
         } else {
-            self.end_a_reversed_slip();
+            k_end = self.end_a_reversed_slip();
         }
+        let kept = self.mode;
         self.resolve_chatter();
-        self.k1 = match self.touch_probe.take() {
-            Some(probe) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
-            None => self.ode.eval_new(&self.mode, &self.s).0,
+        // The derivative a slip going on was tested with is the next step's first stage where
+        // the chatter rules kept its mode (the same evaluation of the same state).
+        self.k1 = match (self.touch_probe.take(), k_end) {
+            (Some(probe), _) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
+            (None, Some(k)) if self.mode == kept => k,
+            (None, _) => self.ode.eval_new(&self.mode, &self.s).0,
         };
         // After a switch the next step is at most this one (the plate's rule).
         self.h = if event.is_some() {
