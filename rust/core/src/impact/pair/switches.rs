@@ -31,7 +31,7 @@ pub(super) struct Ignored {
 /// the switch located last); the law is a function of the state and mode alone, so an
 /// evaluation is reused, never redone (two 12-gons evaluated it 16.7 times per step, 2.8 of
 /// them again). Round bodies evaluate afresh: their law costs less than keeping it (two discs
-/// kept theirs and ran 7 % slower with 17 % fewer evaluations).
+/// kept theirs and ran 8-12 % slower with 16 % fewer evaluations).
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
