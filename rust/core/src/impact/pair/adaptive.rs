@@ -13,7 +13,7 @@
 //! taken along the motion by a forward difference).
 
 use super::law::{error_scales, PairOde};
-use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
+use super::piece::{Eval, Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
 use super::switches::{first_switch, Ignored, KeptSamples, StepSamples, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
@@ -205,8 +205,12 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.attempts += 1;
         let h = self.capped_step();
         let (ode, mode) = (&self.ode, self.mode);
-        step.take(&self.s, &self.k1, h, |_, y, k| {
-            ode.eval(&mode, y, k);
+        let mut at_end = Eval::default();
+        step.take(&self.s, &self.k1, h, |stage, y, k| {
+            let e = ode.eval(&mode, y, k);
+            if stage == 6 {
+                at_end = e;
+            }
         });
         let h_next = match verdict(self.scaled_norm(&step.err), h, self.lim.h_min()) {
             Verdict::Accept { h_next } => h_next,
@@ -217,7 +221,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             Verdict::NonFinite => return Err(StopReason::NonFinite),
         };
         let ignored = std::mem::take(&mut self.ignored);
-        let samples = StepSamples::new(&self.ode, self.mode, step, &self.kept);
+        let samples = StepSamples::new(&self.ode, self.mode, (step, at_end), &self.kept);
         let first = first_switch(&samples, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
         let extremes = (theta * h > 0.0).then(|| extremes_in(&samples, theta));
