@@ -30,8 +30,10 @@ pub(super) struct Ignored {
 /// once: every candidate event samples the step's end, and the extremes sample it again (or
 /// the switch located last); the law is a function of the state and mode alone, so an
 /// evaluation is reused, never redone (two 12-gons evaluated it 16.7 times per step, 2.8 of
-/// them again). Round bodies evaluate afresh: their law costs less than keeping it (two discs
-/// kept theirs and ran 8-12 % slower with 16 % fewer evaluations).
+/// them again). The step's end is the last stage's state where the dense output rounds to it
+/// bit for bit, and read from its evaluation. Round bodies keep nothing else: their law costs
+/// less than keeping it (two discs kept theirs and ran 8-12 % slower with 16 % fewer
+/// evaluations).
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
