@@ -247,6 +247,8 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             self.fresh_touch = false;
             self.steps += 1;
         }
+        // A whole step without a switch ends where its last stage was evaluated, in its mode.
+        let whole_in = (theta >= 1.0 && event.is_none()).then_some(mode);
         self.s = s_new;
         self.keep_angular_momentum();
         self.t += theta * h;
@@ -263,13 +265,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         }
         let kept = self.mode;
         self.resolve_chatter();
-        // The derivative a slip going on was tested with is the next step's first stage where
-        // the chatter rules kept its mode (the same evaluation of the same state).
-        self.k1 = match (self.touch_probe.take(), k_end) {
-            (Some(probe), _) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
-            (None, Some(k)) if self.mode == kept => k,
-            (None, _) => self.ode.eval_new(&self.mode, &self.s).0,
-        };
+        // The derivative a slip going on was tested with, where the chatter rules kept its mode.
+        let k_end = k_end.filter(|_| self.mode == kept);
+        self.k1 = self.next_first_stage(step, k_end, whole_in);
         // After a switch the next step is at most this one (the plate's rule).
         self.h = if event.is_some() {
             h_next.min(h)
@@ -277,6 +275,35 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             h_next
         };
         Ok(true)
+    }
+
+    /// The next step's first stage, at the state this one ended in: a touch's
+    /// (`touch_derivative`); `k_end` where the slip's reversal test evaluated it there; after a
+    /// whole step without a switch (`whole_in` its mode, still the mode), its last stage's
+    /// (first same as last, as on the plate), the positions' rates the velocities restored to
+    /// the angular momentum: the forces' rates at the velocities before (apart from the
+    /// dashpots' and the tangential spring's share of that restoring turn, ~1e-5 tol, the
+    /// same); else the law evaluated afresh.
+    fn next_first_stage(
+        &mut self,
+        step: &DenseStep<NS, NS>,
+        k_end: Option<State>,
+        whole_in: Option<Mode>,
+    ) -> State {
+        if let Some(probe) = self.touch_probe.take() {
+            return self.ode.touch_derivative(&self.mode, &self.s, &probe);
+        }
+        if let Some(k) = k_end {
+            return k;
+        }
+        if whole_in == Some(self.mode) && !self.mode.apart {
+            let mut k = step.k_end();
+            for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
+                k[i] = self.s[rate];
+            }
+            return k;
+        }
+        self.ode.eval_new(&self.mode, &self.s).0
     }
 
     /// The factor on the local error of a piece of length `h_taken` ended by `event`, where
