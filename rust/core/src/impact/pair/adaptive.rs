@@ -281,9 +281,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// (`touch_derivative`); `k_end` where the slip's reversal test evaluated it there; after a
     /// whole step without a switch (`whole_in` its mode, still the mode), its last stage's
     /// (first same as last, as on the plate), the positions' rates the velocities restored to
-    /// the angular momentum: the forces' rates at the velocities before (apart from the
-    /// dashpots' and the tangential spring's share of that restoring turn, ~1e-5 tol, the
-    /// same); else the law evaluated afresh.
+    /// the angular momentum: the restoring turn is rigid, it changes no relative velocity at
+    /// the contact, so the forces, the spring's rate and the forces' powers at the velocities
+    /// before it are those after, to round-off; else the law evaluated afresh.
     fn next_first_stage(
         &mut self,
         step: &DenseStep<NS, NS>,
