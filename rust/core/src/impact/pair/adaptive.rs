@@ -13,8 +13,8 @@
 //! taken along the motion by a forward difference).
 
 use super::law::{error_scales, PairOde};
-use super::piece::{Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
-use super::switches::{first_switch, Ignored, SWITCH_PRECISION};
+use super::piece::{Eval, Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
+use super::switches::{first_switch, Ignored, KeptSamples, StepSamples, SWITCH_PRECISION};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -29,6 +29,7 @@ use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
@@ -109,6 +110,8 @@ pub(super) struct Run<'a, G> {
     pub(super) y0: f64,
     pub(super) n_sep: [f64; 2],
     pub(super) rec: Record,
+    /// The law's evaluations a step shares between its events and extremes.
+    pub(super) kept: RefCell<KeptSamples>,
 }
 
 impl<'a, G: PairGeometry> Run<'a, G> {
@@ -192,6 +195,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
                 step_budget: max_steps,
                 ..Record::default()
             },
+            kept: RefCell::default(),
         }
     }
 
@@ -201,8 +205,12 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.attempts += 1;
         let h = self.capped_step();
         let (ode, mode) = (&self.ode, self.mode);
-        step.take(&self.s, &self.k1, h, |_, y, k| {
-            ode.eval(&mode, y, k);
+        let mut at_end = Eval::default();
+        step.take(&self.s, &self.k1, h, |stage, y, k| {
+            let e = ode.eval(&mode, y, k);
+            if stage == 6 {
+                at_end = e;
+            }
         });
         let h_next = match verdict(self.scaled_norm(&step.err), h, self.lim.h_min()) {
             Verdict::Accept { h_next } => h_next,
@@ -213,8 +221,10 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             Verdict::NonFinite => return Err(StopReason::NonFinite),
         };
         let ignored = std::mem::take(&mut self.ignored);
-        let first = first_switch(&self.ode, &self.mode, step, ignored);
+        let samples = StepSamples::new(&self.ode, self.mode, (step, at_end), &self.kept);
+        let first = first_switch(&samples, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
+        let extremes = (theta * h > 0.0).then(|| extremes_in(&samples, theta));
         let (s_new, err_taken) = if theta >= 1.0 {
             (step.y1, step.err)
         } else if theta * h <= 0.0 {
@@ -230,30 +240,34 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
         let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
         self.chatter.count(switch, (theta * h, h), self.lim.tiny);
-        if theta * h > 0.0 {
+        if let Some([depth, area]) = extremes {
             // Pieces of zero length are no steps (the plate's count).
-            self.track_extremes(step, theta);
+            self.rec.max_depth = self.rec.max_depth.max(depth);
+            self.rec.max_area = self.rec.max_area.max(area);
             self.fresh_touch = false;
             self.steps += 1;
         }
+        // A whole step without a switch ends where its last stage was evaluated, in its mode.
+        let whole_in = (theta >= 1.0 && event.is_none()).then_some(mode);
         self.s = s_new;
         self.keep_angular_momentum();
         self.t += theta * h;
         if ignored.clip {
             self.end_clip_hold();
         }
+        let mut k_end = None;
         if let Some(ev) = event {
             self.apply(ev);
         } else if self.mode.apart {
             self.fly();
         } else {
-            self.end_a_reversed_slip();
+            k_end = self.end_a_reversed_slip();
         }
+        let kept = self.mode;
         self.resolve_chatter();
-        self.k1 = match self.touch_probe.take() {
-            Some(probe) => self.ode.touch_derivative(&self.mode, &self.s, &probe),
-            None => self.ode.eval_new(&self.mode, &self.s).0,
-        };
+        // The derivative a slip going on was tested with, where the chatter rules kept its mode.
+        let k_end = k_end.filter(|_| self.mode == kept);
+        self.k1 = self.next_first_stage(step, k_end, whole_in);
         // After a switch the next step is at most this one (the plate's rule).
         self.h = if event.is_some() {
             h_next.min(h)
@@ -261,6 +275,35 @@ impl<'a, G: PairGeometry> Run<'a, G> {
             h_next
         };
         Ok(true)
+    }
+
+    /// The next step's first stage, at the state this one ended in: a touch's
+    /// (`touch_derivative`); `k_end` where the slip's reversal test evaluated it there; after a
+    /// whole step without a switch (`whole_in` its mode, still the mode), its last stage's
+    /// (first same as last, as on the plate), the positions' rates the velocities restored to
+    /// the angular momentum: the restoring turn is rigid, it changes no relative velocity at
+    /// the contact, so the forces, the spring's rate and the forces' powers at the velocities
+    /// before it are those after, to round-off; else the law evaluated afresh.
+    fn next_first_stage(
+        &mut self,
+        step: &DenseStep<NS, NS>,
+        k_end: Option<State>,
+        whole_in: Option<Mode>,
+    ) -> State {
+        if let Some(probe) = self.touch_probe.take() {
+            return self.ode.touch_derivative(&self.mode, &self.s, &probe);
+        }
+        if let Some(k) = k_end {
+            return k;
+        }
+        if whole_in == Some(self.mode) && !self.mode.apart {
+            let mut k = step.k_end();
+            for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
+                k[i] = self.s[rate];
+            }
+            return k;
+        }
+        self.ode.eval_new(&self.mode, &self.s).0
     }
 
     /// The factor on the local error of a piece of length `h_taken` ended by `event`, where
@@ -391,22 +434,6 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         self.attempts += advances;
     }
 
-    /// The largest overlap and area inside the taken part of the step: at its end, and where
-    /// the normal velocity turns (the deepest point), located on the dense output.
-    fn track_extremes(&mut self, step: &DenseStep<NS, NS>, theta: f64) {
-        let g_n = |th: f64| {
-            let s = step.at(th);
-            s[X] * s[GX] + s[Y] * s[GY]
-        };
-        let (a, b) = (g_n(0.0), g_n(theta));
-        let at = [Some(theta), turning_point(g_n, a, (theta, b))];
-        for th in at.into_iter().flatten() {
-            let e = self.ode.eval_new(&self.mode, &step.at(th)).1;
-            self.rec.max_depth = self.rec.max_depth.max(e.depth);
-            self.rec.max_area = self.rec.max_area.max(e.area);
-        }
-    }
-
     fn push(&self, tr: &mut Trace) {
         let s = &self.s;
         let f = self.ode.eval_new(&self.mode, s).1.forces(&self.mode);
@@ -454,4 +481,23 @@ fn switch_kind(ev: Event) -> SwitchKind {
         Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
         _ => SwitchKind::Other,
     }
+}
+
+/// The largest overlap and area inside the part of the step of `samples` up to `theta`: at
+/// its end, and where the normal velocity turns (the deepest point), located on the dense
+/// output.
+fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) -> [f64; 2] {
+    let step = samples.step;
+    let g_n = |th: f64| {
+        let s = step.at(th);
+        s[X] * s[GX] + s[Y] * s[GY]
+    };
+    let (a, b) = (g_n(0.0), g_n(theta));
+    let at = [Some(theta), turning_point(g_n, a, (theta, b))];
+    let mut most = [f64::NEG_INFINITY; 2];
+    for th in at.into_iter().flatten() {
+        let e = samples.eval_at(th, &step.at(th));
+        most = [most[0].max(e.depth), most[1].max(e.area)];
+    }
+    most
 }

@@ -2,7 +2,7 @@
 //! a mode, and their event functions (continuous, <= 0 while the piece's mode holds).
 
 use super::law::PairOde;
-use super::piece::{Eval, Event, Mode, State, Tan, X, XI, Y};
+use super::piece::{Eval, Event, Mode, State, Tan, NS, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
 
 impl<G: PairGeometry> PairOde<'_, G> {
@@ -28,11 +28,23 @@ impl<G: PairGeometry> PairOde<'_, G> {
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
     pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
+        self.event_value_with(m, ev, s, || self.eval_new(m, s).1)
+    }
+
+    /// [`Self::event_value`], the law's evaluation at `s` in mode `m` given by `eval` (called
+    /// only where the event needs it: a step's candidates share one evaluation per sample).
+    pub(super) fn event_value_with(
+        &self,
+        m: &Mode,
+        ev: Event,
+        s: &State,
+        eval: impl FnOnce() -> Eval,
+    ) -> f64 {
         if ev == Event::Springs {
             let q = [s[X], s[Y], s[4], s[6]];
             return self.geometry.held_springs_value(&q, &self.held);
         }
-        let e = self.eval_new(m, s).1;
+        let e = eval();
         match ev {
             Event::Separate => -e.depth,
             Event::Touch => e.depth,
@@ -70,7 +82,9 @@ impl<G: PairGeometry> PairOde<'_, G> {
             tan: Tan::Stick,
             ..*m
         };
-        let (d_stick, now) = self.eval_new(&stick, &held);
+        // Held differs from `s` in the spring alone: the contact `e` found there is its own.
+        let mut d_stick = [0.0; NS];
+        let now = self.rates(&stick, &held, *e, &mut d_stick);
         let ahead: State = std::array::from_fn(|i| held[i] + h * d_stick[i]);
         let later = self.eval_new(&stick, &ahead).1;
         let dfn = (later.f_raw - now.f_raw) / h;

@@ -57,11 +57,10 @@ pub(super) struct PairOde<'a, G> {
 impl<G: PairGeometry> PairOde<'_, G> {
     /// The derivative `ds` of state `s` in mode `m`, and the forces.
     pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
-        let law = &self.pair.law;
+        #[cfg(feature = "bench-counters")]
+        crate::counters::count_pair_law_evaluation();
         let q = [s[X], s[Y], s[4], s[6]];
-        let g = [s[GX], s[GY]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
-        let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
         let mut e = Eval::default();
         match self.geometry.frame_held(&q, &self.held) {
             Some(fr) => {
@@ -84,6 +83,19 @@ impl<G: PairGeometry> PairOde<'_, G> {
                 e.depth = self.geometry.signed_depth(&q);
             }
         }
+        self.rates(m, s, e, ds)
+    }
+
+    /// [`Self::eval`]'s tangential force and the derivative, from its `contact` at `s` (the
+    /// frame and the normal force, which read the positions and velocities alone) in a mode of
+    /// the same clip and contact as `m` (its tangential law and spring may differ).
+    #[inline(always)]
+    pub(super) fn rates(&self, m: &Mode, s: &State, contact: Eval, ds: &mut State) -> Eval {
+        let law = &self.pair.law;
+        let g = [s[GX], s[GY]];
+        let v = [s[GX], s[GY], s[W1], s[W2]];
+        let at = |l: [f64; 2]| l[0] * s[W1] + l[1] * s[W2];
+        let mut e = contact;
         let n = e.n;
         let t = [n[1], -n[0]];
         let (g_n, g_t) = (n[0] * g[0] + n[1] * g[1], t[0] * g[0] + t[1] * g[1]);

@@ -4,7 +4,7 @@
 //! that follow from the state rather than from an event function.
 
 use super::adaptive::Run;
-use super::piece::{Event, Mode, Tan, X, XI, Y};
+use super::piece::{Event, Mode, State, Tan, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
 
 impl<G: PairGeometry> Run<'_, G> {
@@ -135,19 +135,22 @@ impl<G: PairGeometry> Run<'_, G> {
     /// speed) at the end of a step: the rate test of `ToStick` samples a sign change that a
     /// turning contact frame (bodies with corners) can carry through within one step, and a
     /// slip left on would feed the motion. The contact sticks at its slipping elongation,
-    /// from where sticking moves the spring's force inside the cone.
-    pub(super) fn end_a_reversed_slip(&mut self) {
+    /// from where sticking moves the spring's force inside the cone. The derivative it
+    /// evaluated where the slip goes on (the next step's first stage, `Run::attempt`).
+    pub(super) fn end_a_reversed_slip(&mut self) -> Option<State> {
         let Tan::Slip(sg) = self.mode.tan else {
-            return;
+            return None;
         };
         if !G::CORNERS {
-            return;
+            return None;
         }
-        let e = self.ode.eval_new(&self.mode, &self.s).1;
+        let (ds, e) = self.ode.eval_new(&self.mode, &self.s);
         if sg * e.v_t > self.slip_margin {
             self.s[XI] = self.ode.slipping_xi(&e);
             self.mode.tan = Tan::Stick;
+            return None;
         }
+        Some(ds)
     }
 
     /// A contact ends: round bodies separate for good; bodies with corners fly apart, their
