@@ -3,7 +3,7 @@
 //! and slip also sampled inside the step, by the plate's rule.
 
 use super::law::PairOde;
-use super::piece::{Eval, Event, Mode, State, NS};
+use super::piece::{Eval, Event, Mode, State, Tan, NS};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
@@ -159,18 +159,26 @@ pub(super) fn first_switch<G: PairGeometry>(
     // In contact and unclipped, the clip switching on is a candidate (`PairOde::candidates`).
     let clip = parting
         .filter(|_| !m.clipped)
-        .and_then(|inside| clip_before_parting(|th| g(Event::ClipOn, th), inside));
-    match (first, clip) {
-        (Some((best, _)), Some(th)) if th < best => Some((th, Event::ClipOn)),
-        _ => first,
-    }
+        .and_then(|inside| before_parting(|th| g(Event::ClipOn, th), inside))
+        .map(|th| (th, Event::ClipOn));
+    // A stuck spring's cone closes with the normal force as the bodies part, so a stick
+    // ends in a slip just before the parting; past it no overlap is left and the slip's
+    // function says nothing, so the samples of the step cannot show that slip.
+    let slip = parting
+        .filter(|_| m.tan == Tan::Stick && !ignored.tangential)
+        .and_then(|inside| before_parting(|th| g(Event::ToSlip, th), inside))
+        .map(|th| (th, Event::ToSlip));
+    [first, clip, slip]
+        .into_iter()
+        .flatten()
+        .min_by(|a, b| a.0.total_cmp(&b.0))
 }
 
 /// Where the damped law's pull sets in before the bodies part at `inside` (the last point of
 /// the step still in contact), `g` the clip's event function: the pull lasts up to the
 /// parting, but past it no overlap, and no force, is left, so the step's end cannot show it.
 /// Sampled towards the parting, densest there (the linear law pulls for c_n / k_n before it).
-fn clip_before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
+fn before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
     let at = (1..=24).map(|k| (inside * (1.0 - 0.5f64.powi(k)), None));
     let ((lo, g_lo), after) = first_positive_sample(&g, at)?;
     let g_lo = g_lo.unwrap_or_else(|| g(lo));
