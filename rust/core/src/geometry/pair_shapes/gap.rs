@@ -31,6 +31,34 @@ pub(super) fn distance_to_polygon(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
         .sqrt()
 }
 
+/// [`distance_to_polygon`] from a corner `p` of the other body: the nearest point lies on an
+/// edge with `p` on (or outside) its line, or at a vertex of one, so only those edges and their
+/// neighbours are measured (a nearest vertex's two edges give its distance rounded two ways,
+/// and the neighbour's may be the smaller), and `p` is inside where no edge has it outside:
+/// the same test and value, a division for about half the edges. A pentagon flying about a
+/// 1024-gon fifty times smaller spent two thirds of its impact in this distance.
+fn distance_from_corner(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
+    let n = b.len();
+    let side = |j: usize| cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) <= 0.0;
+    let (mut best, mut outside) = (f64::INFINITY, false);
+    let (mut before, mut here) = (side(n - 1), side(0));
+    for j in 0..n {
+        let after = side((j + 1) % n);
+        if here {
+            outside |= cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) < 0.0;
+        }
+        if before || here || after {
+            best = best.min(segment_distance2(p, b[j], b[(j + 1) % n]));
+        }
+        (before, here) = (here, after);
+    }
+    if outside {
+        best.sqrt()
+    } else {
+        0.0
+    }
+}
+
 /// Whether the convex polygons `a` (centred near `q`) and `b` overlap: the O(n + m) clip.
 pub(super) fn polygons_overlap(a: &[[f64; 2]], b: &[[f64; 2]], q: [f64; 2]) -> bool {
     thread_local! {
@@ -63,11 +91,57 @@ pub(super) fn vertices_distance(a: &[[f64; 2]], b: &[[f64; 2]], centre: [f64; 2]
     else {
         return f64::INFINITY;
     };
-    let mut best = distance_to_polygon(first, b);
+    let mut best = distance_from_corner(first, b);
     for &p in a {
         if reach(p) < best {
-            best = best.min(distance_to_polygon(p, b));
+            best = best.min(distance_from_corner(p, b));
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{distance_from_corner, distance_to_polygon};
+
+    /// The corner's distance measures only the edges facing it, and gives every edge's
+    /// minimum bit for bit: points all around random convex polygons (3 to 1024 corners),
+    /// near and far, inside, on vertices and on the extensions of edges.
+    #[test]
+    fn the_corner_distance_is_every_edges_bit_for_bit() {
+        let mut seed = 7u64;
+        let mut rng = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..400 {
+            let n = [3usize, 4, 5, 12, 120, 1024][case % 6];
+            let aspect = 0.3 + 0.7 * rng();
+            let turn = rng() * std::f64::consts::TAU;
+            let b: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let t = turn + std::f64::consts::TAU * k as f64 / n as f64;
+                    [t.cos(), aspect * t.sin()]
+                })
+                .collect();
+            for k in 0..50 {
+                let p = match k % 5 {
+                    0 => b[k % n],
+                    1 => {
+                        let (u, v) = (b[k % n], b[(k + 1) % n]);
+                        let s = 1.0 + 3.0 * rng();
+                        [u[0] + s * (v[0] - u[0]), u[1] + s * (v[1] - u[1])]
+                    }
+                    _ => {
+                        let (r, t) = (0.5 + 4.0 * rng(), rng() * std::f64::consts::TAU);
+                        [r * t.cos(), r * t.sin()]
+                    }
+                };
+                let (fast, every) = (distance_from_corner(p, &b), distance_to_polygon(p, &b));
+                assert_eq!(fast.to_bits(), every.to_bits(), "{n}-gon, p {p:?}");
+            }
+        }
+    }
 }
