@@ -8,13 +8,8 @@
 use restitution_core::{simulate, Cell, Initial, Integrator, NormalLaw, Partner, Scene, Shape};
 fn main() {
     let count: usize = std::env::args().nth(1).map_or(200, |s| s.parse().unwrap());
-    let mut seed = 12345u64;
-    let mut rng = move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut seeded = restitution_core::Seeded(12345);
+    let mut rng = move || seeded.uniform();
     let sizes = [3usize, 4, 5, 7, 12, 24, 60, 120, 200];
     for case in 0..count {
         let shape = |r: f64, rng: &mut dyn FnMut() -> f64| {

@@ -52,4 +52,5 @@ pub use model::{
     Initial, Integrator, Model, NormalLaw, Pair, Partner, Scene, TangentialHistory,
     TangentialModel, Templates, CASE_COLUMNS, CHOICES,
 };
+pub use numerics::seeded::Seeded;
 pub use sweep::{cases_from_rows, check_cases, run_cases, run_cases_cancellable, Case};

@@ -611,13 +611,8 @@ fn long_matrix() {
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(10_000);
-    let mut state = 0x5eed_u64;
-    let mut uniform = move || {
-        state = state
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut seeded = restitution_core::Seeded(0x5eed);
+    let mut uniform = move || seeded.uniform();
     let all = [combinations(false), combinations(true)];
     let mut t = Tally::default();
     let start = std::time::Instant::now();

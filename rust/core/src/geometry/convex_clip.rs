@@ -407,13 +407,8 @@ mod tests {
     /// both boundaries.
     #[test]
     fn agrees_with_parry_and_marks_the_crossings() {
-        let mut seed = 7u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seeded = crate::numerics::seeded::Seeded(7);
+        let mut rnd = || seeded.uniform();
         let (mut out, mut next) = (Vec::new(), Vec::new());
         let mut overlapping = 0;
         for _ in 0..2000 {

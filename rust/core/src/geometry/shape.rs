@@ -138,13 +138,8 @@ impl Shape {
                 out.push((format!("{n}-gon"), p));
             }
         }
-        let mut state = seed;
-        let mut uniform = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seeded = crate::numerics::seeded::Seeded(seed);
+        let mut uniform = || seeded.uniform();
         let mut angles: Vec<f64> = (0..7).map(|_| uniform() * 2.0 * PI).collect();
         angles.sort_by(f64::total_cmp);
         let pts: Vec<[f64; 2]> = angles

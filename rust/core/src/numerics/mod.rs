@@ -1,7 +1,9 @@
 //! Numerical tools that know nothing of the physics, used by every layer above: the one root
 //! finder (Brent's method, bracketing and peak search), shared by the Hertz calibration in
 //! `model`, the fixed-step events in `integrate` and the adaptive path's switches in `impact`;
-//! and the sine and cosine that turn a polygon's corners (`trig`).
+//! the sine and cosine that turn a polygon's corners (`trig`); and the seeded uniform numbers of
+//! the tests and the consistency matrix (`seeded`).
 
 pub(crate) mod roots;
+pub(crate) mod seeded;
 pub(crate) mod trig;

@@ -2,13 +2,7 @@
 //! of edges and discs against the placed corners.
 
 use super::*;
-
-fn rng(seed: &mut u64) -> f64 {
-    *seed = seed
-        .wrapping_mul(6364136223846793005)
-        .wrapping_add(1442695040888963407);
-    (*seed >> 11) as f64 / (1u64 << 53) as f64
-}
+use crate::numerics::seeded::uniform as rng;
 
 /// A random convex polygon: corners at sorted random angles on an ellipse.
 fn random_convex(r: f64, n: usize, seed: &mut u64) -> Polygon {

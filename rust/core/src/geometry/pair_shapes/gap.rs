@@ -109,13 +109,8 @@ mod tests {
     /// near and far, inside, on vertices and on the extensions of edges.
     #[test]
     fn the_corner_distance_is_every_edges_bit_for_bit() {
-        let mut seed = 7u64;
-        let mut rng = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seeded = crate::numerics::seeded::Seeded(7);
+        let mut rng = move || seeded.uniform();
         for case in 0..400 {
             let n = [3usize, 4, 5, 12, 120, 1024][case % 6];
             let aspect = 0.3 + 0.7 * rng();

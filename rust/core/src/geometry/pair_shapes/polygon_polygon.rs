@@ -386,13 +386,8 @@ mod tests {
     /// millionth of the reach.
     #[test]
     fn a_certain_overlap_is_one_the_clip_finds() {
-        let mut seed = 3u64;
-        let mut rng = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut seeded = crate::numerics::seeded::Seeded(3);
+        let mut rng = move || seeded.uniform();
         let (mut certain, mut deep) = (0, 0);
         let mut window = WindowScratch::default();
         let (mut out, mut clipped) = (Vec::new(), Vec::new());
