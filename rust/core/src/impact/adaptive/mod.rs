@@ -50,6 +50,7 @@ use crate::model::scene::REFERENCE_LOCAL_TOL;
 use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use extremes::turning_point;
+pub(crate) use piece::Tan;
 pub(crate) use rules::{
     error_estimate, root_exponent, singular_cap, singular_factor, spring_scale, state_at_switch,
     velocity_scales, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,

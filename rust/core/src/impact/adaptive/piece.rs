@@ -18,9 +18,9 @@ pub(super) enum Touch {
     },
 }
 
-/// The tangential law in a piece.
+/// The tangential law in a piece, on the plate and on a pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Tan {
+pub(crate) enum Tan {
     /// mu = 0 or no overlap.
     None,
     /// Spring and damper within the Coulomb cone; xi integrated.

@@ -20,17 +20,8 @@ pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
 pub(super) const WD: usize = 11;
 
-/// The tangential law of a piece.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Tan {
-    /// mu = 0.
-    None,
-    Stick,
-    /// F_t = mu F_n s, s = +-1.
-    Slip(f64),
-    /// The normal force is clipped: no tangential force.
-    Free,
-}
+/// The tangential law of a piece: the plate's.
+pub(super) use crate::impact::adaptive::Tan;
 
 /// The law that holds in a piece.
 #[derive(Debug, Clone, Copy, PartialEq)]
