@@ -119,3 +119,33 @@ fn a_stick_ends_in_a_slip_before_the_bodies_part() {
         &[3e-4, 1e-4, 1e-6],
     );
 }
+
+/// A damped pentagon on a 60-gon (area law, mu 1.18; `benchmarks/pair_accuracy.py --discs
+/// --seeds 4`, draw 163) ends its contact slipping along a closing cone, the spring relaxing
+/// along it turning the sliding with the slip's force. Stuck at a step's end for that turn
+/// alone, where a stuck spring would leave the cone at once, the contact's slip function
+/// rose and fell back between the samples of the next step: stuck 6e-6 s before the
+/// reference, 52.8 tol off at tol 1e-7 (err_est 2.9 tol). A slip whose sliding turned now
+/// sticks only where sticking is consistent (docs/model.md, 17.5).
+#[test]
+fn a_slip_turned_by_a_closing_cone_goes_on() {
+    let r2 = 0.005624636671379825;
+    let scene = Scene {
+        shape: Shape::regular_polygon(R, 5).unwrap(),
+        gamma: 0.33,
+        mu: 1.1842634186071446,
+        normal_law: NormalLaw::Area,
+        integrator: Integrator::Reference,
+        partner: Some(Partner::of(Shape::regular_polygon(r2, 60).unwrap())),
+        ..Scene::default()
+    };
+    let init = Initial::from_angle(V, 49.593427471549106, 0.5075313847815373, 308.0969213265117)
+        .with_partner(7.040276965308325, 220.93840127268788);
+    assert_within_tol(
+        "a pentagon on a 60-gon",
+        &scene,
+        &init,
+        R,
+        &[2e-7, 1.5e-7, 1e-7],
+    );
+}
