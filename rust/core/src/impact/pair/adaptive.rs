@@ -339,7 +339,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// from the dense output where its error estimate is within the local tolerance, else from
     /// the step redone up to there ([`state_at_switch`]).
     fn state_at_switch(&self, step: &DenseStep<NS, NS>, th: f64) -> (State, State) {
-        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap)) {
+        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap))
+            .filter(|_| !self.ode.ends_apart(&step.y1))
+        {
             return at;
         }
         let (ode, mode) = (&self.ode, self.mode);
