@@ -161,27 +161,29 @@ fn a_slip_turned_by_a_closing_cone_goes_on() {
 /// tol); such a step is now redone to the switch (docs/model.md, 17.5).
 #[test]
 fn a_slip_ending_as_the_bodies_part_is_read_from_a_redone_step() {
-    let cases = [
-        (
+    // (r2, n2, mu, theta, omega1, omega2, phi2): draws 248 and 477.
+    let cases: [[f64; 7]; 2] = [
+        [
             0.007370264544077665,
-            12,
+            12.0,
             0.2520377030302212,
             60.12969736995541,
             5.493729949891638,
-        ),
-        (
+            7.1371872439126305,
+            81.04175735737016,
+        ],
+        [
             0.0063889902783395595,
-            120,
+            120.0,
             1.3514823596301726,
             35.42210068813805,
             5.765681885478961,
-        ),
+            3.9868202805916657,
+            96.63282260163149,
+        ],
     ];
-    let partner = [
-        (7.1371872439126305, 81.04175735737016),
-        (3.9868202805916657, 96.63282260163149),
-    ];
-    for ((r2, n2, mu, theta, w1), (w2, phi2)) in cases.into_iter().zip(partner) {
+    for [r2, n2, mu, theta, w1, w2, phi2] in cases {
+        let n2 = n2 as usize;
         let scene = Scene {
             shape: Shape::Disc { r: R },
             gamma: 0.0,
