@@ -157,6 +157,8 @@ def main() -> None:
                     help="docs/model.md 17.8's 960 linear-law impacts instead of random pairs")
     ap.add_argument("--check-reference", action="store_true",
                     help="also run the reference at a fifth of its largest step")
+    ap.add_argument("--list-over", type=float, default=None, metavar="TOLS",
+                    help="print every impact whose error exceeds this many tol, with its draw")
     args = ap.parse_args()
     if args.quick:
         args.pairs, args.tols = 24, [1e-4, 1e-6]
@@ -181,7 +183,7 @@ def main() -> None:
     for tol in args.tols:
         worst, single, covered, several, count, worst_p = 0.0, 0.0, 0, 0, 0, None
         worst_all, covered_all = 0.0, 0
-        for p, ref in zip(draws, refs):
+        for index, (p, ref) in enumerate(zip(draws, refs)):
             if ref is None:
                 continue
             rec, sec = run(p, "adaptive", tol)
@@ -197,6 +199,9 @@ def main() -> None:
                 single = max(single, err / tol)
             if err / tol > worst:
                 worst, worst_p = err / tol, p
+            if args.list_over is not None and err / tol > args.list_over:
+                print(f"    draw {index} at tol {tol:g}: {err / tol:.3g} tol, err_est "
+                      f"{(rec.err_est or 0.0) / tol:.3g} tol, {rec.contacts} contacts: {p}")
         print(f"tol {tol:.0e}: largest error {worst:.3g} tol (one contact: {single:.3g}), "
               f"err_est >= error in {100.0 * covered / max(count, 1):.1f} % of {count}; "
               f"{several} with several contacts; with e_N and e_T: {worst_all:.3g} tol, "

@@ -76,7 +76,8 @@ fn short_stick_and_slip_phases_of_a_pair_are_located() {
 }
 
 /// The default path on the reference `scene`'s impact from `init` at each of `tols`: within 3
-/// tol of the reference integrator, and `err_est` at least its error (`r` the spins' radius).
+/// tol of the reference integrator, and `err_est` at least its error (e_N, e_T, e_kin and both
+/// spins, `r` the spins' radius).
 fn assert_within_tol(what: &str, scene: &Scene, init: &Initial, r: f64, tols: &[f64]) {
     let reference = simulate(scene, init).unwrap();
     for &tol in tols {
@@ -87,7 +88,8 @@ fn assert_within_tol(what: &str, scene: &Scene, init: &Initial, r: f64, tols: &[
             ..scene.clone()
         };
         let rec = simulate(&adaptive, init).unwrap();
-        let err = rec.accuracy_distance(&reference, r, V);
+        let partner_spin = (rec.partner_omega_out - reference.partner_omega_out).abs() * r / V;
+        let err = rec.accuracy_distance(&reference, r, V).max(partner_spin);
         let est = rec.err_est.unwrap();
         assert!(
             err <= 3.0 * tol && est >= err,
@@ -118,4 +120,81 @@ fn a_stick_ends_in_a_slip_before_the_bodies_part() {
         R,
         &[3e-4, 1e-4, 1e-6],
     );
+}
+
+/// A damped pentagon on a 60-gon (area law, mu 1.18; `benchmarks/pair_accuracy.py --discs
+/// --seeds 4`, draw 163) ends its contact slipping along a closing cone, the spring relaxing
+/// along it turning the sliding with the slip's force. Stuck at a step's end for that turn
+/// alone, where a stuck spring would leave the cone at once, the contact's slip function
+/// rose and fell back between the samples of the next step: stuck 6e-6 s before the
+/// reference, 52.8 tol off at tol 1e-7 (err_est 2.9 tol). A slip whose sliding turned now
+/// sticks only where sticking is consistent (docs/model.md, 17.5).
+#[test]
+fn a_slip_turned_by_a_closing_cone_goes_on() {
+    let r2 = 0.005624636671379825;
+    let scene = Scene {
+        shape: Shape::regular_polygon(R, 5).unwrap(),
+        gamma: 0.33,
+        mu: 1.1842634186071446,
+        normal_law: NormalLaw::Area,
+        integrator: Integrator::Reference,
+        partner: Some(Partner::of(Shape::regular_polygon(r2, 60).unwrap())),
+        ..Scene::default()
+    };
+    let init = Initial::from_angle(V, 49.593427471549106, 0.5075313847815373, 308.0969213265117)
+        .with_partner(7.040276965308325, 220.93840127268788);
+    assert_within_tol(
+        "a pentagon on a 60-gon",
+        &scene,
+        &init,
+        R,
+        &[2e-7, 1.5e-7, 1e-7],
+    );
+}
+
+/// A disc on a 12-gon and a disc on a 120-gon (area law, elastic, mu 0.25 and 1.35;
+/// `benchmarks/pair_accuracy.py --discs --seeds 4`, draws 248 and 477) slip to the end of their
+/// contact, where the closing cone ends the slip just before the bodies part, inside a step
+/// that crosses the parting. The state there, read off the step's dense output, whose error
+/// estimate understates across the force's root singularity at the parting, was 4.7 tol off
+/// in e_N at tol 1e-4 and 4.1 tol in the partner's spin at tol 1e-5 (err_est 0.5 and 1.4
+/// tol); such a step is now redone to the switch (docs/model.md, 17.5).
+#[test]
+fn a_slip_ending_as_the_bodies_part_is_read_from_a_redone_step() {
+    // (r2, n2, mu, theta, omega1, omega2, phi2): draws 248 and 477.
+    let cases: [[f64; 7]; 2] = [
+        [
+            0.007370264544077665,
+            12.0,
+            0.2520377030302212,
+            60.12969736995541,
+            5.493729949891638,
+            7.1371872439126305,
+            81.04175735737016,
+        ],
+        [
+            0.0063889902783395595,
+            120.0,
+            1.3514823596301726,
+            35.42210068813805,
+            5.765681885478961,
+            3.9868202805916657,
+            96.63282260163149,
+        ],
+    ];
+    for [r2, n2, mu, theta, w1, w2, phi2] in cases {
+        let n2 = n2 as usize;
+        let scene = Scene {
+            shape: Shape::Disc { r: R },
+            gamma: 0.0,
+            mu,
+            normal_law: NormalLaw::Area,
+            integrator: Integrator::Reference,
+            partner: Some(Partner::of(Shape::regular_polygon(r2, n2).unwrap())),
+            ..Scene::default()
+        };
+        let init = Initial::from_angle(V, theta, w1, 0.0).with_partner(w2, phi2);
+        let what = format!("a disc on a {n2}-gon");
+        assert_within_tol(&what, &scene, &init, R, &[1e-4, 1e-5, 1e-8]);
+    }
 }

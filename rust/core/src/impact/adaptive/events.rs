@@ -4,7 +4,7 @@
 use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
 use super::step::Step;
-use super::switches::{first_positive_sample, locate_switch};
+use super::switches::{first_positive_sample, locate_switch, switch_precision};
 use super::{State, OM, PHI, VX, VY, Y};
 use crate::geometry::{disc_arm_per_depth, Shape};
 use crate::model::NormalLaw;
@@ -323,20 +323,11 @@ impl Reference<'_> {
         locate_switch(g, (lo, g0), (hi, g_hi), self.switch_precision(ev)).1
     }
 
-    /// To what fraction of its step a switch `ev` is located. The switches leave the forces
-    /// continuous, so one late by delta errs like delta^2: the local tolerance itself (within
-    /// [1e-10, 1e-6]) leaves ~tol^2. Only the linear law's dashpot jumps where a contact
-    /// starts (touch, a corner entering: by c_n v), an error like delta: those to 1e-10 of the
-    /// step, as every switch of the reference (1e-14 moved its records by <= 2e-12 for ~5
-    /// more evaluations per switch; 1e-6 instead of 1e-10 saves ~3 % of the adaptive path's
-    /// time on the disc at tol 1e-6).
+    /// To what fraction of its step a switch `ev` is located ([`switch_precision`]): the
+    /// linear law's dashpot jumps where a contact starts (touch, a corner entering).
     pub(super) fn switch_precision(&self, ev: Event) -> f64 {
         let jumps = matches!(ev, Event::Touch | Event::EnterLeft | Event::EnterRight);
-        if jumps && self.linear().is_some() {
-            1e-10
-        } else {
-            self.tol.clamp(1e-10, 1e-6)
-        }
+        switch_precision(self.tol, jumps && self.linear().is_some())
     }
 
     /// The first switch of event `ev` among samples of its function at the increasing

@@ -57,7 +57,7 @@ pub(crate) use rules::{
 };
 pub(crate) use run::integrate;
 pub(crate) use switches::{
-    first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
+    first_positive_sample, locate_switch, sampled_first_switch, switch_precision, TANGENTIAL_PARTS,
 };
 
 /// Settings of the reference integrator.

@@ -14,7 +14,7 @@
 
 use super::law::{error_scales, PairOde};
 use super::piece::{Eval, Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
-use super::switches::{first_switch, Ignored, KeptSamples, StepSamples, SWITCH_PRECISION};
+use super::switches::{first_switch, Ignored, KeptSamples, StepSamples};
 use super::Start;
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -238,7 +238,7 @@ impl<'a, G: PairGeometry> Run<'a, G> {
         let event = first.map(|(_, ev)| ev);
         let factor = self.singular_factor(theta * h, event);
         self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
-        let switch = event.map(|ev| (switch_kind(ev), SWITCH_PRECISION));
+        let switch = event.map(|ev| (switch_kind(ev), self.ode.switch_precision(ev)));
         self.chatter.count(switch, (theta * h, h), self.lim.tiny);
         if let Some([depth, area]) = extremes {
             // Pieces of zero length are no steps (the plate's count).
@@ -339,7 +339,9 @@ impl<'a, G: PairGeometry> Run<'a, G> {
     /// from the dense output where its error estimate is within the local tolerance, else from
     /// the step redone up to there ([`state_at_switch`]).
     fn state_at_switch(&self, step: &DenseStep<NS, NS>, th: f64) -> (State, State) {
-        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap)) {
+        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap))
+            .filter(|_| !self.ode.ends_apart(&step.y1))
+        {
             return at;
         }
         let (ode, mode) = (&self.ode, self.mode);

@@ -4,6 +4,8 @@
 use super::law::PairOde;
 use super::piece::{Eval, Event, Mode, State, Tan, NS, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
+use crate::impact::adaptive::switch_precision;
+use crate::model::NormalLaw;
 
 impl<G: PairGeometry> PairOde<'_, G> {
     /// The events that can end a piece of mode `m`.
@@ -24,6 +26,17 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let separate = (!m.apart).then_some(Event::Separate);
         let springs = (!m.apart && self.geometry.holds_springs()).then_some(Event::Springs);
         [apart, separate, clip, tan, springs].into_iter().flatten()
+    }
+
+    /// To what fraction of its step switch `ev` is located: the plate's rule
+    /// ([`switch_precision`]) at the run's local tolerance. The force jumps where the linear
+    /// law's dashpot starts to push (the touch) and where the held springs switch (a corner's
+    /// spring enters or leaves; under the area law a crossing passes a corner, where the
+    /// potential's force jumps, docs/model.md 17.8).
+    pub(super) fn switch_precision(&self, ev: Event) -> f64 {
+        let linear = matches!(self.pair.law.scene.normal_law, NormalLaw::Linear { .. });
+        let jumps = ev == Event::Springs || (linear && ev == Event::Touch);
+        switch_precision(self.pair.particle.scene.local_tol(), jumps)
     }
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).

@@ -11,9 +11,6 @@ use crate::impact::adaptive::{
 use crate::integrate::dopri::DenseStep;
 use std::cell::RefCell;
 
-/// To what fraction of its step a switch is located.
-pub(super) const SWITCH_PRECISION: f64 = 1e-12;
-
 /// The switches a step does not look for, where they chattered (the adaptive rules'
 /// remedies, `Chatter`).
 #[derive(Debug, Clone, Copy, Default)]
@@ -141,10 +138,11 @@ pub(super) fn first_switch<G: PairGeometry>(
         if (ignored.tangential && tangential) || (ignored.clip && ev == Event::ClipOff) {
             continue;
         }
-        let found = if matches!(ev, Event::ToSlip | Event::ToStick) {
-            tangential_switch_in(|th| g(ev, th)).map(|th| (th, th))
+        let precision = ode.switch_precision(ev);
+        let found = if tangential {
+            tangential_switch_in(|th| g(ev, th), precision).map(|th| (th, th))
         } else {
-            switch_in(|th| g(ev, th), 1.0)
+            switch_in(|th| g(ev, th), precision)
         };
         let Some((inside, th)) = found else {
             continue;
@@ -159,14 +157,20 @@ pub(super) fn first_switch<G: PairGeometry>(
     // In contact and unclipped, the clip switching on is a candidate (`PairOde::candidates`).
     let clip = parting
         .filter(|_| !m.clipped)
-        .and_then(|inside| before_parting(|th| g(Event::ClipOn, th), inside))
+        .and_then(|inside| {
+            let precision = ode.switch_precision(Event::ClipOn);
+            before_parting(|th| g(Event::ClipOn, th), inside, precision)
+        })
         .map(|th| (th, Event::ClipOn));
     // A stuck spring's cone closes with the normal force as the bodies part, so a stick
     // ends in a slip just before the parting; past it no overlap is left and the slip's
     // function says nothing, so the samples of the step cannot show that slip.
     let slip = parting
         .filter(|_| m.tan == Tan::Stick && !ignored.tangential)
-        .and_then(|inside| before_parting(|th| g(Event::ToSlip, th), inside))
+        .and_then(|inside| {
+            let precision = ode.switch_precision(Event::ToSlip);
+            before_parting(|th| g(Event::ToSlip, th), inside, precision)
+        })
         .map(|th| (th, Event::ToSlip));
     [first, clip, slip]
         .into_iter()
@@ -178,11 +182,11 @@ pub(super) fn first_switch<G: PairGeometry>(
 /// the step still in contact), `g` the clip's event function: the pull lasts up to the
 /// parting, but past it no overlap, and no force, is left, so the step's end cannot show it.
 /// Sampled towards the parting, densest there (the linear law pulls for c_n / k_n before it).
-fn before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
+fn before_parting(g: impl Fn(f64) -> f64, inside: f64, precision: f64) -> Option<f64> {
     let at = (1..=24).map(|k| (inside * (1.0 - 0.5f64.powi(k)), None));
     let ((lo, g_lo), after) = first_positive_sample(&g, at)?;
     let g_lo = g_lo.unwrap_or_else(|| g(lo));
-    Some(locate_switch(&g, (lo, g_lo), after, SWITCH_PRECISION).1)
+    Some(locate_switch(&g, (lo, g_lo), after, precision).1)
 }
 
 /// Where a stick -> slip or slip -> stick function `g` first fires inside the step: sampled
@@ -191,25 +195,21 @@ fn before_parting(g: impl Fn(f64) -> f64, inside: f64) -> Option<f64> {
 /// Tested at the step's end only, a slip phase the shrinking cone forced at the start of a
 /// stick step and that ended before its end went unseen (a triangle on a 24-gon at mu 1.6,
 /// spinning: stuck one step early, 1.6e-5 to 6.1e-5 off at tol 1e-6 to 1e-8).
-fn tangential_switch_in(g: impl Fn(f64) -> f64) -> Option<f64> {
+fn tangential_switch_in(g: impl Fn(f64) -> f64, precision: f64) -> Option<f64> {
     let locate = |(lo, g_lo): (f64, Option<f64>), hi: (f64, f64)| {
         let g_lo = g_lo.unwrap_or_else(|| g(lo));
-        locate_switch(&g, (lo, g_lo), hi, SWITCH_PRECISION).1
+        locate_switch(&g, (lo, g_lo), hi, precision).1
     };
     sampled_first_switch(TANGENTIAL_PARTS, &g, (|| g(0.0), g(1.0)), locate)
 }
 
-/// The bracket (inside, past) of the first change of sign of `g` on [0, `end`], `g` > 0
-/// meaning the switch fired; `None` where `g(end)` has not fired.
-fn switch_in(g: impl Fn(f64) -> f64, end: f64) -> Option<(f64, f64)> {
-    let g1 = g(end);
+/// The bracket (inside, past) of the first change of sign of `g` on the step, `g` > 0
+/// meaning the switch fired, located to `precision` of the step; `None` where `g(1)` has not
+/// fired.
+fn switch_in(g: impl Fn(f64) -> f64, precision: f64) -> Option<(f64, f64)> {
+    let g1 = g(1.0);
     if !(g1 > 0.0) {
         return None;
     }
-    Some(locate_switch(
-        &g,
-        (0.0, g(0.0)),
-        (end, g1),
-        SWITCH_PRECISION,
-    ))
+    Some(locate_switch(&g, (0.0, g(0.0)), (1.0, g1), precision))
 }
