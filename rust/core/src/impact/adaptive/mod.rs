@@ -38,8 +38,10 @@ mod extremes;
 mod law;
 mod mode;
 mod piece;
+mod plate;
 mod rules;
 mod run;
+mod side;
 mod step;
 mod switches;
 
@@ -51,11 +53,13 @@ use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use extremes::turning_point;
 pub(crate) use piece::Tan;
+pub(crate) use plate::integrate;
 pub(crate) use rules::{
     error_estimate, root_exponent, singular_cap, singular_factor, spring_scale, state_at_switch,
     velocity_scales, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
 };
-pub(crate) use run::integrate;
+pub(crate) use run::Run;
+pub(crate) use side::AdaptiveSide;
 pub(crate) use switches::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
