@@ -294,11 +294,12 @@ impl<'a> AdaptiveSide for OnPlate<'a> {
         cleared || (off && fly(run))
     }
 
+    #[inline]
     fn coast(run: &mut Run<'_, Self>) -> bool {
         coast(run)
     }
 
-    fn finish(mut run: Run<'_, Self>, stop: StopReason) -> Record {
+    fn finish(run: &mut Run<'_, Self>, stop: StopReason) -> Record {
         let s = &run.s;
         let side = &mut run.side;
         let (model, init) = (side.ode.model, side.init);
@@ -338,6 +339,7 @@ impl<'a> AdaptiveSide for OnPlate<'a> {
 /// centre line), so the clip cannot switch on again and separation comes at y = r, in closed
 /// form. Stepped instead, the tail took a few Runge-Kutta steps, a located switch and a step
 /// redone up to it. Not where the jump would pass the contact-time budget.
+#[inline]
 fn coast(run: &mut Run<'_, OnPlate>) -> bool {
     let (m, s, r) = (&run.mode, &run.s, run.side.ode.model.r);
     // Written as the conditions to hold, so that a NaN fails them.

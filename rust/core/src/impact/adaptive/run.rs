@@ -61,20 +61,20 @@ impl<'t, S: AdaptiveSide> Run<'t, S> {
 
     /// Integrates the impact to its end: the bodies parted for good, a budget spent, or a
     /// state no step keeps finite.
-    pub(crate) fn integrate(mut self, cancel: &Cancel) -> Result<Record> {
+    pub(crate) fn integrate(&mut self, cancel: &Cancel) -> Result<Record> {
         // Where each attempted step and each step redone up to a switch are written (~1.4 kB
         // each on the plate: returned by value, a step was copied twice per attempt).
         let (mut step, mut redo) = (S::Step::default(), S::Step::default());
         let stride = self.side.poll_stride();
         let stop = loop {
-            if S::parted(&mut self) {
+            if S::parted(self) {
                 break StopReason::Separated;
             }
             cancel.poll_every(self.attempts, stride)?;
-            if let Some(stop) = self.lim.budget_spent(self.attempts, S::contact_time(&self)) {
+            if let Some(stop) = self.lim.budget_spent(self.attempts, S::contact_time(self)) {
                 break stop;
             }
-            if S::coast(&mut self) {
+            if S::coast(self) {
                 continue;
             }
             if let Some(stop) = self.attempt(&mut step, &mut redo) {

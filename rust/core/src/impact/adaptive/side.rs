@@ -147,5 +147,5 @@ pub(crate) trait AdaptiveSide: Sized {
     }
 
     /// The record of the impact, ended for `stop`.
-    fn finish(run: Run<'_, Self>, stop: StopReason) -> Record;
+    fn finish(run: &mut Run<'_, Self>, stop: StopReason) -> Record;
 }

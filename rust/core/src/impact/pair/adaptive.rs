@@ -361,9 +361,9 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         run.side.separated
     }
 
-    fn finish(run: Run<'_, Self>, stop: StopReason) -> Record {
+    fn finish(run: &mut Run<'_, Self>, stop: StopReason) -> Record {
         let s = run.s;
-        let side = run.side;
+        let side = &run.side;
         let mut rec = side.rec;
         rec.stop = stop;
         rec.steps = run.steps;
