@@ -251,10 +251,10 @@ impl<'a> AdaptiveSide for OnPlate<'a> {
     fn refresh(
         run: &mut Run<'_, Self>,
         whole: Option<&Step>,
-        (mode_step, s_new): (Mode, State),
+        (mode_step, s_new): (&Mode, &State),
         h_taken: f64,
     ) {
-        let known = whole.filter(|_| run.mode == mode_step && run.s == s_new);
+        let known = whole.filter(|_| run.mode == *mode_step && run.s == *s_new);
         refresh(run, h_taken, known);
     }
 

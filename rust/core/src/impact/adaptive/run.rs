@@ -187,7 +187,7 @@ impl<'t, S: AdaptiveSide> Run<'t, S> {
         S::resolve_chatter(self);
         // A whole step without a switch ends where its last stage was evaluated (FSAL).
         let whole = (event.is_none() && h_taken == h).then_some(step);
-        S::refresh(self, whole, (mode_step, s_new), h_taken);
+        S::refresh(self, whole, (&mode_step, &s_new), h_taken);
         // After a switch the next step is at most this one.
         self.h = if event.is_some() {
             h_next.min(h)

@@ -120,7 +120,7 @@ pub(crate) trait AdaptiveSide: Sized {
     fn refresh(
         run: &mut Run<'_, Self>,
         whole: Option<&Self::Step>,
-        before: (Self::Mode, Self::State),
+        before: (&Self::Mode, &Self::State),
         h_taken: f64,
     );
 

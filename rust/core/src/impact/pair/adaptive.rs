@@ -312,7 +312,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     fn refresh(
         run: &mut Run<'_, Self>,
         whole: Option<&PairStep>,
-        (mode_step, _): (Mode, State),
+        (mode_step, _): (&Mode, &State),
         _h_taken: f64,
     ) {
         let side = &mut run.side;
@@ -321,7 +321,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
             side.ode.touch_derivative(&run.mode, &run.s, &probe)
         } else if let Some((k, _)) = k_end {
             k
-        } else if let Some(step) = whole.filter(|_| mode_step == run.mode && !run.mode.apart) {
+        } else if let Some(step) = whole.filter(|_| *mode_step == run.mode && !run.mode.apart) {
             let mut k = step.dp.k_end();
             for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
                 k[i] = run.s[rate];
