@@ -69,8 +69,7 @@ fn main() {
                         Cell::Opt(x) => x.map_or("-".into(), |x| format!("{:x}", x.to_bits())),
                         Cell::Int(i) => format!("{i}"),
                         Cell::Bool(b) => format!("{b}"),
-                        #[allow(unreachable_patterns)]
-                        _ => "?".into(),
+                        Cell::Name(n) => n.to_string(),
                     })
                     .collect();
                 println!(

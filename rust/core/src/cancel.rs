@@ -67,17 +67,12 @@ impl Cancel {
         self.set.load(Ordering::Relaxed)
     }
 
-    /// `Err(Error::Interrupted)` once the token is set, polled only every [`POLL_STEPS`]
-    /// steps (`step` counts the loop's iterations); a watched token asks its watch first.
-    #[inline(always)]
-    pub(crate) fn poll(&self, step: u64) -> crate::error::Result<()> {
-        self.poll_every(step, POLL_STEPS)
-    }
-
-    /// As [`Cancel::poll`], every `stride` steps (a power of two, at most [`POLL_STEPS`]): a
-    /// loop whose steps cost far more than the plate's (a pair of fine polygons: two 1024-gons
-    /// take ~0.2 ms a fixed step, so 4096 steps would be most of a second) polls as often in
-    /// time.
+    /// `Err(Error::Interrupted)` once the token is set, polled only every `stride` steps
+    /// (`step` counts the loop's iterations; `stride` a power of two, at most [`POLL_STEPS`]);
+    /// a watched token asks its watch first. The plate's loops poll every [`POLL_STEPS`]; a
+    /// loop whose steps cost far more than the plate's (a pair of fine polygons: two
+    /// 1024-gons take ~0.2 ms a fixed step, so 4096 steps would be most of a second) polls as
+    /// often in time.
     #[inline(always)]
     pub(crate) fn poll_every(&self, step: u64, stride: u64) -> crate::error::Result<()> {
         if step & (stride - 1) == 0 && self.stop_requested() {

@@ -3,10 +3,8 @@
 //! (touch and separation; the steps and error factors there are the rules', `rules.rs`).
 
 use super::law::Reference;
-use super::piece::{Event, Mode, Touch};
-use super::rules::{
-    root_exponent, singular_cap, singular_factor, spring_scale, velocity_scales, Limits,
-};
+use super::piece::{Mode, Touch};
+use super::rules::{spring_scale, velocity_scales, Limits};
 use super::{ReferenceOptions, State, NS, OM, PHI, VX, VY, W_D, W_EL, W_T, X, XI, Y};
 use crate::geometry::Shape;
 use crate::impact::budget::{budget_for, reference_contact_steps};
@@ -50,26 +48,6 @@ impl Reference<'_> {
     /// 47 steps).
     pub(super) fn singular_force(&self, m: &Mode) -> bool {
         self.linear().is_none() && m.touch == Touch::Disc && m.clip_on
-    }
-
-    /// The largest step in mode `m` at state `s` near a point where a disc's force is not
-    /// smooth ([`singular_cap`]); `h_sing` is `Limits::h_singular`.
-    pub(super) fn singular_cap(&self, m: &Mode, s: &State, fresh_touch: bool, h_sing: f64) -> f64 {
-        if !self.singular_force(m) {
-            return f64::INFINITY;
-        }
-        singular_cap(fresh_touch, (self.model.r - s[Y], s[VY]), h_sing)
-    }
-
-    /// The factor on the local error of a step in mode `m` starting `rho` of its lengths after
-    /// touch, or ending on `event` ([`singular_factor`]).
-    pub(super) fn singular_factor(&self, m: &Mode, rho: Option<f64>, event: Option<Event>) -> f64 {
-        match root_exponent(&self.model.scene.normal_law) {
-            Some(p) if self.singular_force(m) => {
-                singular_factor(p, rho, event == Some(Event::Separate))
-            }
-            _ => 1.0,
-        }
     }
 }
 

@@ -27,10 +27,14 @@
 //! `dt_factor` means the largest (and the first) step, in units of t_ref; the accuracy is set
 //! by [`ReferenceOptions::tol`].
 //!
-//! The parts: `step` one Runge-Kutta step ([`crate::integrate::dopri`]) with what the switches
-//! read from its stages, `law` the forces of a
-//! held mode, `mode` the modes and the switch at an event, `events` the event functions
-//! and their location, `run` the loop of one impact.
+//! The parts: `run` the one loop of an impact, on the plate and on a pair, generic over
+//! `side`'s `AdaptiveSide` (what the loop asks of the body the particle meets); `rules`,
+//! `switches` and `extremes` the rules every side follows (step control, err_est, chatter,
+//! the location of a switch and of the deepest point); the plate's side: `plate` (its
+//! `AdaptiveSide`), `step` one Runge-Kutta step ([`crate::integrate::dopri`]) with what the
+//! switches read from its stages, `law` the forces of a held mode, `mode` the modes and the
+//! switch at an event, `events` the event functions and their location. A pair's side lives
+//! in `impact/pair`, which implements `AdaptiveSide` from below.
 
 mod control;
 mod events;
@@ -38,8 +42,10 @@ mod extremes;
 mod law;
 mod mode;
 mod piece;
+mod plate;
 mod rules;
 mod run;
+mod side;
 mod step;
 mod switches;
 
@@ -51,11 +57,13 @@ use crate::model::{Initial, Integrator, Model, Scene};
 
 pub(crate) use extremes::turning_point;
 pub(crate) use piece::Tan;
+pub(crate) use plate::integrate;
 pub(crate) use rules::{
-    error_estimate, root_exponent, singular_cap, singular_factor, spring_scale, state_at_switch,
-    velocity_scales, verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
+    error_estimate, root_exponent, spring_scale, state_at_switch, velocity_scales, ErrorSum,
+    Limits, SwitchKind,
 };
-pub(crate) use run::integrate;
+pub(crate) use run::Run;
+pub(crate) use side::AdaptiveSide;
 pub(crate) use switches::{
     first_positive_sample, locate_switch, sampled_first_switch, switch_precision, TANGENTIAL_PARTS,
 };

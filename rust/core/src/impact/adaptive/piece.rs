@@ -36,7 +36,7 @@ pub(super) struct Mode {
     pub(super) touch: Touch,
     pub(super) clip_on: bool,
     /// The clip held off for one step, its events ignored, where it chatters (see
-    /// `Run::resolve_chatter`).
+    /// `OnPlate::resolve_chatter`).
     pub(super) clip_hold: bool,
     pub(super) tan: Tan,
     /// Past the deepest point of a contact, for a history that shrinks as the contact unloads

@@ -48,13 +48,16 @@ impl Reference<'_> {
         let mut pull = None;
         let mut stick_span = (f64::INFINITY, f64::NEG_INFINITY);
         let (end, slip_stages) = (&mut out.end, &mut out.slip_stages);
+        // What the stages test of the mode, read once: left to each stage, the mode's fields
+        // were loaded and tested again at every one of them.
+        let (watch_pull, tan) = (m.clipped(), m.tan);
         out.dp.take(y0, k1, h, |st, yi, k_out| {
             // Each stage's evaluation goes where the step keeps its end's: the last stays.
             self.eval_to(m, yi, k_out, end);
-            if pull.is_none() && m.clipped() && end.fn_raw < -self.force_tol {
+            if pull.is_none() && watch_pull && end.fn_raw < -self.force_tol {
                 pull = Some(C[st]);
             }
-            match m.tan {
+            match tan {
                 Tan::Stick => {
                     let g = self.to_slip_value(end);
                     stick_span = (stick_span.0.min(g), stick_span.1.max(g));

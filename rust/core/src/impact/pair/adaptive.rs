@@ -1,10 +1,11 @@
-//! The adaptive path on a pair (docs/model.md, section 17.5): Dormand-Prince 5(4)
+//! A pair on the adaptive path (docs/model.md, section 17.5): the partner as the one adaptive
+//! loop sees it ([`AdaptiveSide`], the loop in `impact/adaptive/run.rs`). Dormand-Prince 5(4)
 //! ([`crate::integrate::dopri`]) on the smooth pieces of the pair's contact law, in the same
 //! centre-of-mass coordinates as the fixed-step loop, every switch between pieces located on
 //! the step's dense output and the integration restarted there: the clip switching on (and
-//! off), stick -> slip, slip -> stick, and separation. The works are integrated as components
-//! of the same ODE, so the energy audit is accurate to the tolerance too. Round bodies cannot
-//! touch again once apart: the impact ends at separation.
+//! off), stick -> slip, slip -> stick, the held springs, separation and touch. The works are
+//! integrated as components of the same ODE, so the energy audit is accurate to the
+//! tolerance too. Round bodies cannot touch again once apart: the impact ends at separation.
 //!
 //! The continuous-time law is the dt -> 0 limit of the fixed steps' (docs/model.md,
 //! sections 4, 5): while sticking d(xi)/dt = rate v_t and F_t = -k_xi xi - c_t v_t; while
@@ -20,8 +21,8 @@ use crate::cancel::Cancel;
 use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
-    error_estimate, root_exponent, singular_cap, singular_factor, state_at_switch, turning_point,
-    verdict, Chatter, ErrorSum, Limits, SwitchKind, Verdict,
+    error_estimate, root_exponent, state_at_switch, turning_point, AdaptiveSide, ErrorSum, Limits,
+    Run, SwitchKind,
 };
 use crate::impact::flight::{self, Approach, Jump};
 use crate::impact::record::{separation_normal, Bodies, Ending, Record, StopReason, Trace};
@@ -42,447 +43,416 @@ pub(super) fn integrate<G: PairGeometry>(
     trace: Option<&mut Trace>,
     cancel: &Cancel,
 ) -> Result<Record> {
-    let mut run = Run::new(pair, init, (geometry, start), (depth_est, tol, max_steps));
-    let mut trace = trace;
-    if let Some(tr) = trace.as_deref_mut() {
-        run.push(tr);
+    let mut run = begin(
+        pair,
+        init,
+        (geometry, start),
+        (depth_est, tol, max_steps),
+        trace,
+    );
+    if let Some(tr) = run.trace.as_deref_mut() {
+        push(&run.side, (&run.mode, &run.s, run.t), tr);
     }
-    let mut step = DenseStep::<NS, NS>::default();
-    // An attempt evaluates the law at 7 stages and more where it locates a switch.
-    let stride = poll_stride(pair, 16);
-    let stop = loop {
-        cancel.poll_every(run.attempts, stride)?;
-        if let Some(stop) = run.lim.budget_spent(run.attempts, run.contact_elapsed()) {
-            break stop;
-        }
-        let accepted = match run.attempt(&mut step) {
-            Ok(accepted) => accepted,
-            Err(stop) => break stop,
-        };
-        if accepted {
-            if let Some(tr) = trace.as_deref_mut() {
-                run.push(tr);
-            }
-            if run.separated {
-                break StopReason::Separated;
-            }
-        }
-    };
-    Ok(run.finish(stop))
+    run.integrate(cancel)
 }
 
-/// The state of one pair impact between steps.
-pub(super) struct Run<'a, G> {
+/// What a pair keeps of its own through one impact on the adaptive path.
+pub(super) struct OnPair<'a, G> {
     pub(super) ode: PairOde<'a, G>,
     pub(super) init: Initial,
-    pub(super) mode: Mode,
-    pub(super) s: State,
-    pub(super) k1: State,
-    pub(super) t: f64,
-    pub(super) h: f64,
-    /// The largest and smallest steps, the budgets and the negligible piece.
-    pub(super) lim: Limits,
     /// 1 / (tol x scale) of each component.
-    pub(super) weight: State,
+    weight: State,
     /// Local errors accumulated in quadrature (`err_est`).
-    pub(super) acc: ErrorSum<NS>,
-    pub(super) attempts: u64,
-    pub(super) steps: u64,
-    /// Consecutive negligible and zero-length pieces.
-    pub(super) chatter: Chatter,
-    /// The switches ignored for one step where they chattered (the rules' remedies).
-    pub(super) ignored: Ignored,
-    /// No step taken since the last touch (`singular_cap`).
-    pub(super) fresh_touch: bool,
+    acc: ErrorSum<NS>,
+    /// The switches the next step ignores where they chattered (the rules' remedies), and
+    /// those the step being taken ignored.
+    ignored: Ignored,
+    step_ignored: Ignored,
     pub(super) separated: bool,
-    /// When the current contact began (s), the centres' distance at first touch and the line
-    /// of centres when the last contact ended.
-    pub(super) t_touch: f64,
     /// How far past a touch its mode is probed (s).
     pub(super) probe_dt: f64,
     /// The pair's angular momentum, restored after every step (`Pair::restoring_turn`).
-    pub(super) l0: f64,
+    l0: f64,
     /// The probe of a touch just applied, for the next piece's first derivative
     /// (`PairOde::touch_derivative`).
     pub(super) touch_probe: Option<State>,
     /// The sliding speed along a slip's force past which the slip ends (m/s).
     pub(super) slip_margin: f64,
-    pub(super) y0: f64,
+    /// The centres' distance at first touch and the line of centres when the last contact
+    /// ended.
+    y0: f64,
     pub(super) n_sep: [f64; 2],
     pub(super) rec: Record,
     /// The law's evaluations a step shares between its events and extremes.
-    pub(super) kept: RefCell<KeptSamples>,
+    kept: RefCell<KeptSamples>,
+    /// The largest overlap and area inside the piece being taken, found with its switch.
+    extremes: Option<[f64; 2]>,
+    /// The derivative a slip going on was tested with at the step's end, and the mode then
+    /// (`end_a_reversed_slip`): the next step's first stage where the chatter rules keep it.
+    k_end: Option<(State, Mode)>,
 }
 
-impl<'a, G: PairGeometry> Run<'a, G> {
-    fn new(
-        pair: &'a Pair,
-        init: &Initial,
-        (geometry, start): (G, Start),
-        (depth_est, tol, max_steps): (f64, f64, u64),
-    ) -> Self {
-        let law = &pair.law;
-        let speed = init.vx.hypot(init.vy);
-        // The speed the error scales are floored by, spins included (the plate's).
-        let spun = speed + pair.particle.r * init.omega.abs() + pair.r2 * init.partner_omega.abs();
-        let t_est = PI * depth_est / init.vy.abs();
-        let mut ode = PairOde {
-            pair,
-            geometry,
-            mu: law.scene.mu,
-            normal: NormalForce::new(law),
-            inv: [
-                1.0 / pair.m_star,
-                1.0 / pair.particle.inertia,
-                1.0 / pair.i2,
-            ],
-            fd_step: 1e-7 * t_est,
-            held: Default::default(),
-        };
-        let s: State = [
-            start.q[0],
-            start.q[1],
-            init.vx,
-            init.vy,
-            init.phi0,
-            init.omega,
-            init.partner_phi0,
-            init.partner_omega,
-            0.0,
-            0.0,
-            0.0,
-            0.0,
-        ];
-        let mut mode = Mode {
-            clipped: false,
-            apart: false,
-            tan: Tan::None,
-        };
-        let probe;
-        (mode.tan, probe) = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
-        let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
-        let weight =
-            error_scales(pair, init, (spun, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
-        let k1 = ode.touch_derivative(&mode, &s, &probe);
-        let lim = Limits::new(t_est, law.scene.dt_factor * law.t_ref, tol, max_steps);
-        Run {
-            ode,
-            init: *init,
-            mode,
-            s,
-            k1,
-            t: 0.0,
-            h: lim.h_max.min(lim.h_singular),
-            lim,
-            weight,
-            acc: ErrorSum::default(),
-            attempts: 0,
-            steps: 0,
-            chatter: Chatter::default(),
-            ignored: Ignored::default(),
-            fresh_touch: true,
-            separated: false,
-            t_touch: 0.0,
-            probe_dt: 1e-12 * t_est,
-            touch_probe: None,
-            l0: pair.angular_momentum(&[s[X], s[Y], s[4], s[6]], &[s[GX], s[GY], s[W1], s[W2]]),
-            slip_margin: 1e-6 * speed,
-            y0: start.q[1],
-            n_sep: [0.0, 1.0],
-            rec: Record {
-                contacts: 1,
-                energy_in,
-                step_budget: max_steps,
-                ..Record::default()
-            },
-            kept: RefCell::default(),
-        }
+/// A Dormand-Prince step of the pair's ODE and the law's evaluation at its end (its last
+/// stage, first same as last).
+#[derive(Default)]
+pub(super) struct PairStep {
+    dp: DenseStep<NS, NS>,
+    end: Eval,
+}
+
+/// The run of a pair impact at first touch.
+fn begin<'a, 't, G: PairGeometry>(
+    pair: &'a Pair,
+    init: &Initial,
+    (geometry, start): (G, Start),
+    (depth_est, tol, max_steps): (f64, f64, u64),
+    trace: Option<&'t mut Trace>,
+) -> Run<'t, OnPair<'a, G>> {
+    let law = &pair.law;
+    let speed = init.vx.hypot(init.vy);
+    // The speed the error scales are floored by, spins included (the plate's).
+    let spun = speed + pair.particle.r * init.omega.abs() + pair.r2 * init.partner_omega.abs();
+    let t_est = PI * depth_est / init.vy.abs();
+    let mut ode = PairOde {
+        pair,
+        geometry,
+        mu: law.scene.mu,
+        normal: NormalForce::new(law),
+        inv: [
+            1.0 / pair.m_star,
+            1.0 / pair.particle.inertia,
+            1.0 / pair.i2,
+        ],
+        fd_step: 1e-7 * t_est,
+        held: Default::default(),
+    };
+    let s: State = [
+        start.q[0],
+        start.q[1],
+        init.vx,
+        init.vy,
+        init.phi0,
+        init.omega,
+        init.partner_phi0,
+        init.partner_omega,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ];
+    let mut mode = Mode {
+        clipped: false,
+        apart: false,
+        tan: Tan::None,
+    };
+    let probe;
+    (mode.tan, probe) = ode.mode_after_touch(&mode, &s, 1e-12 * t_est);
+    let energy_in = pair.kinetic_energy(&[init.vx, init.vy, init.omega, init.partner_omega]);
+    let weight =
+        error_scales(pair, init, (spun, energy_in), t_est, depth_est).map(|x| 1.0 / (tol * x));
+    let k1 = ode.touch_derivative(&mode, &s, &probe);
+    let lim = Limits::new(t_est, law.scene.dt_factor * law.t_ref, tol, max_steps);
+    let side = OnPair {
+        ode,
+        init: *init,
+        weight,
+        acc: ErrorSum::default(),
+        ignored: Ignored::default(),
+        step_ignored: Ignored::default(),
+        separated: false,
+        probe_dt: 1e-12 * t_est,
+        touch_probe: None,
+        l0: pair.angular_momentum(&[s[X], s[Y], s[4], s[6]], &[s[GX], s[GY], s[W1], s[W2]]),
+        slip_margin: 1e-6 * speed,
+        y0: start.q[1],
+        n_sep: [0.0, 1.0],
+        rec: Record {
+            contacts: 1,
+            energy_in,
+            step_budget: max_steps,
+            ..Record::default()
+        },
+        kept: RefCell::default(),
+        extremes: None,
+        k_end: None,
+    };
+    let h = lim.h_max.min(lim.h_singular);
+    Run::new(side, (s, mode, k1), h, lim, trace)
+}
+
+impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
+    type State = State;
+    type Mode = Mode;
+    type Event = Event;
+    type Step = PairStep;
+
+    /// An attempt evaluates the law at 7 stages and more where it locates a switch.
+    fn poll_stride(&self) -> u64 {
+        poll_stride(self.ode.pair, 16)
     }
 
-    /// One attempted step; true when it was accepted (up to a switch, which it then applies),
-    /// `Err` with why the impact stops where it must.
-    fn attempt(&mut self, step: &mut DenseStep<NS, NS>) -> std::result::Result<bool, StopReason> {
-        self.attempts += 1;
-        let h = self.capped_step();
-        let (ode, mode) = (&self.ode, self.mode);
+    fn dp_step(&self, m: &Mode, s: &State, k1: &State, h: f64, out: &mut PairStep) -> f64 {
+        let (ode, mode) = (&self.ode, *m);
         let mut at_end = Eval::default();
-        step.take(&self.s, &self.k1, h, |stage, y, k| {
+        out.dp.take(s, k1, h, |stage, y, k| {
             let e = ode.eval(&mode, y, k);
             if stage == 6 {
                 at_end = e;
             }
         });
-        let h_next = match verdict(self.scaled_norm(&step.err), h, self.lim.h_min()) {
-            Verdict::Accept { h_next } => h_next,
-            Verdict::Reject { h_retry } => {
-                self.h = h_retry;
-                return Ok(false);
-            }
-            Verdict::NonFinite => return Err(StopReason::NonFinite),
-        };
-        let ignored = std::mem::take(&mut self.ignored);
-        let samples = StepSamples::new(&self.ode, self.mode, (step, at_end), &self.kept);
+        out.end = at_end;
+        self.scaled_norm(m, &out.dp.err)
+    }
+
+    fn step_end(step: &PairStep) -> (&State, &State) {
+        (&step.dp.y1, &step.dp.err)
+    }
+
+    fn state_at_switch(&self, m: &Mode, step: &PairStep, th: f64) -> Option<(State, State)> {
+        state_at_switch(&step.dp, th, |gap| self.scaled_norm(m, gap))
+            .filter(|_| !self.ode.ends_apart(&step.dp.y1))
+    }
+
+    fn root_exponent(&self) -> Option<f64> {
+        root_exponent(&self.ode.pair.law.scene.normal_law)
+    }
+
+    /// In contact and unclipped under the area and Hertz laws (the linear law's force is
+    /// smooth at touch and separation).
+    fn singular_force(&self, m: &Mode) -> bool {
+        !m.clipped && !m.apart && self.root_exponent().is_some()
+    }
+
+    fn opening(&self, s: &State) -> (f64, f64) {
+        self.ode.opening(s)
+    }
+
+    /// The first switch of the step's mode ([`first_switch`]), the switches that chattered
+    /// left out; the largest overlap and area up to it are found on the same samples of the
+    /// law ([`extremes_in`]).
+    fn first_switch(run: &mut Run<'_, Self>, step: &PairStep) -> Option<(f64, Event)> {
+        let side = &mut run.side;
+        let ignored = std::mem::take(&mut side.ignored);
+        side.step_ignored = ignored;
+        let samples = StepSamples::new(&side.ode, run.mode, (&step.dp, step.end), &side.kept);
         let first = first_switch(&samples, ignored);
         let theta = first.map_or(1.0, |(th, _)| th);
-        let extremes = (theta * h > 0.0).then(|| extremes_in(&samples, theta));
-        let (s_new, err_taken) = if theta >= 1.0 {
-            (step.y1, step.err)
-        } else if theta * h <= 0.0 {
-            (self.s, [0.0; NS])
-        } else {
-            // As on the plate, a switch inside the step counts against the budget as a step's
-            // work, whether the step is redone to it or not.
-            self.attempts += 1;
-            self.state_at_switch(step, theta)
-        };
-        let event = first.map(|(_, ev)| ev);
-        let factor = self.singular_factor(theta * h, event);
-        self.acc.add(&err_taken, factor, [GX, GY, W1, W2]);
-        let switch = event.map(|ev| (switch_kind(ev), self.ode.switch_precision(ev)));
-        self.chatter.count(switch, (theta * h, h), self.lim.tiny);
-        if let Some([depth, area]) = extremes {
-            // Pieces of zero length are no steps (the plate's count).
-            self.rec.max_depth = self.rec.max_depth.max(depth);
-            self.rec.max_area = self.rec.max_area.max(area);
-            self.fresh_touch = false;
-            self.steps += 1;
-        }
-        // A whole step without a switch ends where its last stage was evaluated, in its mode.
-        let whole_in = (theta >= 1.0 && event.is_none()).then_some(mode);
-        self.s = s_new;
-        self.keep_angular_momentum();
-        self.t += theta * h;
-        if ignored.clip {
-            self.end_clip_hold();
-        }
-        let mut k_end = None;
-        if let Some(ev) = event {
-            self.apply(ev);
-        } else if self.mode.apart {
-            self.fly();
-        } else {
-            k_end = self.end_a_reversed_slip();
-        }
-        let kept = self.mode;
-        self.resolve_chatter();
-        // The derivative a slip going on was tested with, where the chatter rules kept its mode.
-        let k_end = k_end.filter(|_| self.mode == kept);
-        self.k1 = self.next_first_stage(step, k_end, whole_in);
-        // After a switch the next step is at most this one (the plate's rule).
-        self.h = if event.is_some() {
-            h_next.min(h)
-        } else {
-            h_next
-        };
-        Ok(true)
+        side.extremes = (theta * step.dp.h_len() > 0.0).then(|| extremes_in(&samples, theta));
+        first
     }
 
-    /// The next step's first stage, at the state this one ended in: a touch's
-    /// (`touch_derivative`); `k_end` where the slip's reversal test evaluated it there; after a
-    /// whole step without a switch (`whole_in` its mode, still the mode), its last stage's
-    /// (first same as last, as on the plate), the positions' rates the velocities restored to
-    /// the angular momentum: the restoring turn is rigid, it changes no relative velocity at
-    /// the contact, so the forces, the spring's rate and the forces' powers at the velocities
-    /// before it are those after, to round-off; else the law evaluated afresh.
-    fn next_first_stage(
-        &mut self,
-        step: &DenseStep<NS, NS>,
-        k_end: Option<State>,
-        whole_in: Option<Mode>,
-    ) -> State {
-        if let Some(probe) = self.touch_probe.take() {
-            return self.ode.touch_derivative(&self.mode, &self.s, &probe);
+    fn switch_kind(ev: Event) -> SwitchKind {
+        match ev {
+            Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
+            Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
+            _ => SwitchKind::Other,
         }
-        if let Some(k) = k_end {
-            return k;
-        }
-        if whole_in == Some(self.mode) && !self.mode.apart {
-            let mut k = step.k_end();
-            for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
-                k[i] = self.s[rate];
-            }
-            return k;
-        }
-        self.ode.eval_new(&self.mode, &self.s).0
     }
 
-    /// The factor on the local error of a piece of length `h_taken` ended by `event`, where
-    /// the force has a root singularity at touch and separation ([`singular_factor`]).
-    fn singular_factor(&self, h_taken: f64, event: Option<Event>) -> f64 {
-        match root_exponent(&self.ode.pair.law.scene.normal_law) {
-            Some(p) if self.singular_mode() => {
-                let rho = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
-                singular_factor(p, rho, event == Some(Event::Separate))
-            }
-            _ => 1.0,
+    fn switch_precision(&self, ev: Event) -> f64 {
+        self.ode.switch_precision(ev)
+    }
+
+    fn is_touch(ev: Event) -> bool {
+        ev == Event::Touch
+    }
+
+    fn is_separation(ev: Event) -> bool {
+        ev == Event::Separate
+    }
+
+    /// Restores the angular momentum; after a step with the clip held, the end state decides
+    /// the clip again.
+    fn settle(run: &mut Run<'_, Self>) {
+        keep_angular_momentum(run);
+        if run.side.step_ignored.clip {
+            Self::end_clip_hold(run);
+        }
+    }
+
+    fn apply(run: &mut Run<'_, Self>, ev: Event, _known: Option<&PairStep>) {
+        Self::apply(run, ev);
+    }
+
+    /// Apart, the flight is jumped; in a slip, a slip whose force turned with the sliding ends.
+    fn without_switch(run: &mut Run<'_, Self>) {
+        if run.mode.apart {
+            fly(run);
+        } else {
+            let k = Self::end_a_reversed_slip(run);
+            run.side.k_end = k.map(|k| (k, run.mode));
         }
     }
 
     /// Leaves a chattering switch for one step in the mode of its sliding motion (the rules'
     /// remedies, `Chatter`): a clip that switches on and off at once stays clipped (no force),
     /// stick and slip that each end at once slide along the cone in slip.
-    fn resolve_chatter(&mut self) {
-        if self.mode.clipped && self.chatter.take_clip() {
-            self.ignored.clip = true;
+    fn resolve_chatter(run: &mut Run<'_, Self>) {
+        let side = &mut run.side;
+        if run.mode.clipped && run.chatter.take_clip() {
+            side.ignored.clip = true;
         }
-        if self.chatter.take_tangential() {
-            if self.mode.tan == Tan::Stick {
-                let e = self.ode.eval_new(&self.mode, &self.s).1;
-                self.mode.tan = Tan::Slip(e.trial.signum());
+        if run.chatter.take_tangential() {
+            if run.mode.tan == Tan::Stick {
+                let e = side.ode.eval_new(&run.mode, &run.s).1;
+                run.mode.tan = Tan::Slip(e.trial.signum());
             }
-            self.ignored.tangential = true;
+            side.ignored.tangential = true;
         }
-        self.ignored.all = self.chatter.stalled();
+        side.ignored.all = run.chatter.stalled();
     }
 
-    /// The state where a piece ends inside `step`, at fraction `th`, and its local error:
-    /// from the dense output where its error estimate is within the local tolerance, else from
-    /// the step redone up to there ([`state_at_switch`]).
-    fn state_at_switch(&self, step: &DenseStep<NS, NS>, th: f64) -> (State, State) {
-        if let Some(at) = state_at_switch(step, th, |gap| self.scaled_norm(gap))
-            .filter(|_| !self.ode.ends_apart(&step.y1))
-        {
-            return at;
-        }
-        let (ode, mode) = (&self.ode, self.mode);
-        let mut redo = DenseStep::<NS, NS>::default();
-        redo.take(&self.s, &self.k1, th * step.h_len(), |_, y, k| {
-            ode.eval(&mode, y, k);
-        });
-        (redo.y1, redo.err)
-    }
-
-    /// The step to take: the controller's, at most the largest; near touch and separation at
-    /// most the rules' ([`singular_cap`]).
-    fn capped_step(&self) -> f64 {
-        let h = self.h.min(self.lim.h_max);
-        if self.singular_mode() {
-            h.min(singular_cap(
-                self.fresh_touch,
-                self.ode.opening(&self.s),
-                self.lim.h_singular,
-            ))
+    /// The next step's first stage, at the state this one ended in: a touch's
+    /// (`touch_derivative`); the one the slip's reversal test evaluated there, where the
+    /// chatter rules kept its mode; after a whole step without a switch still in its mode, its
+    /// last stage's (first same as last, as on the plate), the positions' rates the
+    /// velocities restored to the angular momentum: the restoring turn is rigid, it changes no
+    /// relative velocity at the contact, so the forces, the spring's rate and the forces'
+    /// powers at the velocities before it are those after, to round-off; else the law
+    /// evaluated afresh. Then the trace.
+    fn refresh(
+        run: &mut Run<'_, Self>,
+        whole: Option<&PairStep>,
+        (mode_step, _): (&Mode, &State),
+        _h_taken: f64,
+    ) {
+        let side = &mut run.side;
+        let k_end = side.k_end.take().filter(|(_, kept)| run.mode == *kept);
+        run.k1 = if let Some(probe) = side.touch_probe.take() {
+            side.ode.touch_derivative(&run.mode, &run.s, &probe)
+        } else if let Some((k, _)) = k_end {
+            k
+        } else if let Some(step) = whole.filter(|_| *mode_step == run.mode && !run.mode.apart) {
+            let mut k = step.dp.k_end();
+            for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
+                k[i] = run.s[rate];
+            }
+            k
         } else {
-            h
+            side.ode.eval_new(&run.mode, &run.s).0
+        };
+        if let Some(tr) = run.trace.as_deref_mut() {
+            push(&run.side, (&run.mode, &run.s, run.t), tr);
         }
     }
 
-    /// Whether the normal force has a root singularity at touch and separation in the current
-    /// mode: in contact and unclipped under the area and Hertz laws (the linear law's force
-    /// is smooth there).
-    fn singular_mode(&self) -> bool {
-        let law = &self.ode.pair.law.scene.normal_law;
-        !self.mode.clipped && !self.mode.apart && root_exponent(law).is_some()
-    }
-
-    /// The largest component of the absolute errors `err` in units of the local tolerance
-    /// (the spring's elongation only while it sticks: elsewhere it is algebraic; the dashpot's
-    /// work is a part of the normal force's, which is controlled, and reported only).
-    fn scaled_norm(&self, err: &State) -> f64 {
-        (0..NS)
-            .filter(|&i| (i != XI || self.mode.tan == Tan::Stick) && i != WD)
-            .map(|i| err[i].abs() * self.weight[i])
-            .fold(0.0, f64::max)
-    }
-
-    /// Restores the pair's angular momentum after a step: the step's polynomial does not keep
-    /// a product of position and velocity (the drift was up to 2.6e-5 tol), the forces do.
-    fn keep_angular_momentum(&mut self) {
-        let s = &mut self.s;
-        let q = [s[X], s[Y], s[4], s[6]];
-        let v = [s[GX], s[GY], s[W1], s[W2]];
-        let dv = self.ode.pair.restoring_turn(&q, &v, self.l0);
-        for (i, d) in [GX, GY, W1, W2].into_iter().zip(dv) {
-            s[i] += d;
+    fn after_piece(run: &mut Run<'_, Self>, _step: &PairStep, _h_taken: f64, _frac: f64) {
+        let rec = &mut run.side.rec;
+        if let Some([depth, area]) = run.side.extremes.take() {
+            rec.max_depth = rec.max_depth.max(depth);
+            rec.max_area = rec.max_area.max(area);
         }
     }
 
-    /// The time spent in contact so far (s): the budget's measure (flights between contacts
-    /// do not count).
-    fn contact_elapsed(&self) -> f64 {
-        let ongoing = if self.mode.apart {
+    fn add_error(&mut self, err: &State, factor: f64) {
+        self.acc.add(err, factor, [GX, GY, W1, W2]);
+    }
+
+    /// Flights between contacts do not count.
+    fn contact_time(run: &Run<'_, Self>) -> f64 {
+        let ongoing = if run.mode.apart {
             0.0
         } else {
-            self.t - self.t_touch
+            run.t - run.t_touch
         };
-        self.rec.contact_time + ongoing
+        run.side.rec.contact_time + ongoing
     }
 
-    /// Apart: jumps the free flight (the plate's, [`flight`]), each advance counted as a
-    /// step; ends the impact when the bodies can never touch again.
-    pub(super) fn fly(&mut self) {
-        let s = &mut self.s;
-        let q = [s[X], s[Y], s[4], s[6]];
-        let v = [s[GX], s[GY], s[W1], s[W2]];
-        let radii = [self.ode.pair.particle.r, self.ode.pair.r2];
-        let approach = Approach::of_pair(&q, &v, radii);
-        let geometry = &self.ode.geometry;
-        let at = |t: f64| -> [f64; 4] { std::array::from_fn(|i| q[i] + v[i] * t) };
-        let gap = |t: f64| -geometry.signed_depth(&at(t));
-        let left = self.lim.max_steps.saturating_sub(self.attempts);
-        let (jump, advances) = flight::jump(gap, approach, self.lim.h_max, left);
-        let t_jump = match jump {
-            Jump::Stay => return,
-            Jump::To(t) => t,
-            Jump::Clear(t) => {
-                self.separated = true;
-                t
-            }
-        };
-        let q = at(t_jump);
-        (s[X], s[Y], s[4], s[6]) = (q[0], q[1], q[2], q[3]);
-        self.t += t_jump;
-        self.steps += advances;
-        self.attempts += advances;
+    fn parted(run: &mut Run<'_, Self>) -> bool {
+        run.side.separated
     }
 
-    fn push(&self, tr: &mut Trace) {
-        let s = &self.s;
-        let f = self.ode.eval_new(&self.mode, s).1.forces(&self.mode);
-        let q = [s[X], s[Y], s[4], s[6]];
-        let v = [s[GX], s[GY], s[W1], s[W2]];
-        tr.push_pair(self.t, &q, &v, &f, s[XI]);
-    }
-
-    fn finish(mut self, stop: StopReason) -> Record {
-        let s = self.s;
-        let mut rec = self.rec;
+    fn finish(run: &mut Run<'_, Self>, stop: StopReason) -> Record {
+        let s = run.s;
+        let side = &run.side;
+        let mut rec = side.rec;
         rec.stop = stop;
-        rec.steps = self.steps;
-        if !self.mode.apart && !self.separated {
-            rec.contact_time += self.t - self.t_touch;
+        rec.steps = run.steps;
+        if !run.mode.apart && !side.separated {
+            rec.contact_time += run.t - run.t_touch;
         }
         rec.work_normal = s[WN];
         rec.work_friction = s[WT];
         rec.work_damping = s[WD];
         let (q, v) = ([s[X], s[Y], s[4], s[6]], [s[GX], s[GY], s[W1], s[W2]]);
         let n_sep = if G::CORNERS {
-            self.n_sep
+            side.n_sep
         } else {
-            separation_normal(&q, &v, self.ode.geometry.reach())
+            separation_normal(&q, &v, side.ode.geometry.reach())
         };
         let end = Ending {
             q,
             v,
-            y0: self.y0,
+            y0: side.y0,
             n_sep,
         };
-        rec.close(&Bodies::Pair(self.ode.pair), &self.init, &end);
-        let (acc, pair) = (&self.acc, self.ode.pair);
+        let pair = side.ode.pair;
+        rec.close(&Bodies::Pair(pair), &side.init, &end);
+        let acc = &side.acc;
         let spins = [(acc.of(W1), pair.particle.r), (acc.of(W2), pair.r2)];
-        rec.err_est = Some(error_estimate(&self.init, (acc.of(GX), acc.of(GY)), spins));
-        self.rec = rec;
-        self.rec
+        rec.err_est = Some(error_estimate(&side.init, (acc.of(GX), acc.of(GY)), spins));
+        rec
     }
 }
 
-/// The kind of a switch, for the chatter count.
-fn switch_kind(ev: Event) -> SwitchKind {
-    match ev {
-        Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
-        Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
-        _ => SwitchKind::Other,
+impl<G: PairGeometry> OnPair<'_, G> {
+    /// The largest component of the absolute errors `err` in units of the local tolerance, in
+    /// mode `m` (the spring's elongation only while it sticks: elsewhere it is algebraic; the
+    /// dashpot's work is a part of the normal force's, which is controlled, and reported only).
+    fn scaled_norm(&self, m: &Mode, err: &State) -> f64 {
+        (0..NS)
+            .filter(|&i| (i != XI || m.tan == Tan::Stick) && i != WD)
+            .map(|i| err[i].abs() * self.weight[i])
+            .fold(0.0, f64::max)
     }
+}
+
+/// Restores the pair's angular momentum after a step: the step's polynomial does not keep a
+/// product of position and velocity (the drift was up to 2.6e-5 tol), the forces do.
+fn keep_angular_momentum<G: PairGeometry>(run: &mut Run<'_, OnPair<'_, G>>) {
+    let s = &mut run.s;
+    let q = [s[X], s[Y], s[4], s[6]];
+    let v = [s[GX], s[GY], s[W1], s[W2]];
+    let dv = run.side.ode.pair.restoring_turn(&q, &v, run.side.l0);
+    for (i, d) in [GX, GY, W1, W2].into_iter().zip(dv) {
+        s[i] += d;
+    }
+}
+
+/// Apart: jumps the free flight (the plate's, [`flight`]), each advance counted as a step;
+/// ends the impact when the bodies can never touch again.
+pub(super) fn fly<G: PairGeometry>(run: &mut Run<'_, OnPair<'_, G>>) {
+    let s = &mut run.s;
+    let q = [s[X], s[Y], s[4], s[6]];
+    let v = [s[GX], s[GY], s[W1], s[W2]];
+    let radii = [run.side.ode.pair.particle.r, run.side.ode.pair.r2];
+    let approach = Approach::of_pair(&q, &v, radii);
+    let geometry = &run.side.ode.geometry;
+    let at = |t: f64| -> [f64; 4] { std::array::from_fn(|i| q[i] + v[i] * t) };
+    let gap = |t: f64| -geometry.signed_depth(&at(t));
+    let left = run.lim.max_steps.saturating_sub(run.attempts);
+    let (jump, advances) = flight::jump(gap, approach, run.lim.h_max, left);
+    let t_jump = match jump {
+        Jump::Stay => return,
+        Jump::To(t) => t,
+        Jump::Clear(t) => {
+            run.side.separated = true;
+            t
+        }
+    };
+    let q = at(t_jump);
+    (s[X], s[Y], s[4], s[6]) = (q[0], q[1], q[2], q[3]);
+    run.t += t_jump;
+    run.steps += advances;
+    run.attempts += advances;
+}
+
+/// Appends the state `s` at time `t` in mode `m` to the trace.
+fn push<G: PairGeometry>(side: &OnPair<'_, G>, (m, s, t): (&Mode, &State, f64), tr: &mut Trace) {
+    let f = side.ode.eval_new(m, s).1.forces(m);
+    let q = [s[X], s[Y], s[4], s[6]];
+    let v = [s[GX], s[GY], s[W1], s[W2]];
+    tr.push_pair(t, &q, &v, &f, s[XI]);
 }
 
 /// The largest overlap and area inside the part of the step of `samples` up to `theta`: at

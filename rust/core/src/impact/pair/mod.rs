@@ -4,9 +4,11 @@
 //! pair is stepped in its centre-of-mass frame on four lanes (x, y of the particle relative to
 //! the partner, phi1, phi2) until the bodies separate for good. Round bodies cannot touch
 //! again once they move apart; bodies with corners can, until their circumscribed circles
-//! part (the plate's `impact::flight`). The fixed-step loop (`fixed`) and the adaptive path (`adaptive`, `law`)
-//! integrate the same coordinates; both end in the one record builder, the plate's
-//! (`Record::close` in `impact/record.rs`).
+//! part (the plate's `impact::flight`). The pair runs on the plate's loops: the fixed-step loop
+//! (`impact/fixed.rs`, through `impact/side.rs`'s `PairSide`) and the one adaptive loop
+//! (`impact/adaptive/run.rs`, through `adaptive::OnPair`, with its ODE in `law`, `events`,
+//! `switches` and `mode`) integrate the same coordinates; both end in the one record builder,
+//! the plate's (`Record::close` in `impact/record.rs`).
 
 use super::budget::{self, MIN_DEPTH_ULPS};
 use super::fixed::{FixedLoop, Limits};

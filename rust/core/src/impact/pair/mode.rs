@@ -3,39 +3,38 @@
 //! spring's elongation), the held springs switching, and the tangential and clip decisions
 //! that follow from the state rather than from an event function.
 
-use super::adaptive::Run;
+use super::adaptive::{fly, OnPair};
 use super::piece::{Event, Mode, State, Tan, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
+use crate::impact::adaptive::Run;
 
-impl<G: PairGeometry> Run<'_, G> {
+impl<G: PairGeometry> OnPair<'_, G> {
     /// After a step with the clip held: the end state decides the clip again.
-    pub(super) fn end_clip_hold(&mut self) {
-        if self.mode.clipped && self.ode.eval_new(&self.mode, &self.s).1.f_raw > 0.0 {
-            self.apply(Event::ClipOff);
+    pub(super) fn end_clip_hold(run: &mut Run<'_, Self>) {
+        if run.mode.clipped && run.side.ode.eval_new(&run.mode, &run.s).1.f_raw > 0.0 {
+            Self::apply(run, Event::ClipOff);
         }
     }
 
     /// Switches the mode at event `ev` and sets the algebraic part of the state.
-    pub(super) fn apply(&mut self, ev: Event) {
-        let (ode, s) = (&mut self.ode, &mut self.s);
+    pub(super) fn apply(run: &mut Run<'_, Self>, ev: Event) {
+        let (ode, s) = (&mut run.side.ode, &mut run.s);
         match ev {
-            Event::Separate => self.separate(),
+            Event::Separate => Self::separate(run),
             Event::Touch => {
-                self.mode = Mode {
+                run.mode = Mode {
                     clipped: false,
                     apart: false,
                     tan: Tan::None,
                 };
                 s[XI] = 0.0;
                 let probe;
-                (self.mode.tan, probe) = ode.mode_after_touch(&self.mode, s, self.probe_dt);
-                self.touch_probe = Some(probe);
-                self.t_touch = self.t;
-                self.fresh_touch = true;
-                self.rec.contacts += 1;
+                (run.mode.tan, probe) = ode.mode_after_touch(&run.mode, s, run.side.probe_dt);
+                run.side.touch_probe = Some(probe);
+                run.side.rec.contacts += 1;
             }
             Event::ClipOn => {
-                self.mode = Mode {
+                run.mode = Mode {
                     clipped: true,
                     apart: false,
                     tan: Tan::Free,
@@ -47,22 +46,22 @@ impl<G: PairGeometry> Run<'_, G> {
                 // on the plate and in the fixed loops. Reset to 0 instead, the dashpot's
                 // full force acted at once: twin 120-gons (linear law, mu 10, 85 deg) ended
                 // 0.038 apart in e_T from Gear-5, which converges to this.
-                let clipped = ode.eval_new(&self.mode, s).1;
+                let clipped = ode.eval_new(&run.mode, s).1;
                 s[XI] = ode.slipping_xi(&clipped);
-                self.mode.clipped = false;
-                self.mode.tan = ode.initial_tan(&self.mode, s);
+                run.mode.clipped = false;
+                run.mode.tan = ode.initial_tan(&run.mode, s);
             }
             Event::ToSlip => {
-                let e = ode.eval_new(&self.mode, s).1;
-                self.mode.tan = Tan::Slip(e.trial.signum());
-                self.rec.slip_events += 1;
+                let e = ode.eval_new(&run.mode, s).1;
+                run.mode.tan = Tan::Slip(e.trial.signum());
+                run.side.rec.slip_events += 1;
             }
             Event::ToStick => {
-                let e = ode.eval_new(&self.mode, s).1;
+                let e = ode.eval_new(&run.mode, s).1;
                 s[XI] = ode.slipping_xi(&e);
-                self.mode.tan = Tan::Stick;
+                run.mode.tan = Tan::Stick;
             }
-            Event::Springs => self.switch_springs(),
+            Event::Springs => Self::switch_springs(run),
         }
     }
 
@@ -78,42 +77,45 @@ impl<G: PairGeometry> Run<'_, G> {
     /// path and Gear-5 converged to answers 0.002 to 0.04 apart in e_T (twin squares and
     /// 120-gons, damped, mu 0.5 and 0.3), and the order of a slip's end and a switch located
     /// together decided the answer (a square pair and its copy ten times as large 5e-5 apart).
-    fn switch_springs(&mut self) {
-        let before = self.ode.eval_new(&self.mode, &self.s).1;
-        let q = [self.s[X], self.s[Y], self.s[4], self.s[6]];
-        self.ode.held = self.ode.geometry.held_springs(&q);
-        if self.mode.apart {
+    fn switch_springs(run: &mut Run<'_, Self>) {
+        let before = run.side.ode.eval_new(&run.mode, &run.s).1;
+        let q = [run.s[X], run.s[Y], run.s[4], run.s[6]];
+        run.side.ode.held = run.side.ode.geometry.held_springs(&q);
+        if run.mode.apart {
             return;
         }
-        if self.mode.clipped {
-            self.release_a_clip(before.f_raw);
+        if run.mode.clipped {
+            Self::release_a_clip(run, before.f_raw);
             return;
         }
-        let slipping = match self.mode.tan {
+        let slipping = match run.mode.tan {
             Tan::Slip(_) => true,
             Tan::Stick => false,
             Tan::None | Tan::Free => return,
         };
         if slipping {
-            self.s[XI] = self.ode.slipping_xi(&before);
+            run.s[XI] = run.side.ode.slipping_xi(&before);
         }
         let stick = Mode {
             tan: Tan::Stick,
-            ..self.mode
+            ..run.mode
         };
-        let after = self.ode.eval_new(&stick, &self.s).1;
-        let (trial, cone) = (after.trial.abs(), self.ode.mu * (after.f_el + after.f_d));
+        let after = run.side.ode.eval_new(&stick, &run.s).1;
+        let (trial, cone) = (
+            after.trial.abs(),
+            run.side.ode.mu * (after.f_el + after.f_d),
+        );
         if slipping && cone > trial * (1.0 + 1e-9) {
-            self.mode.tan = Tan::Stick;
-        } else if slipping && self.ode.event_value(&self.mode, Event::ToStick, &self.s) > 0.0 {
+            run.mode.tan = Tan::Stick;
+        } else if slipping && run.side.ode.event_value(&run.mode, Event::ToStick, &run.s) > 0.0 {
             // On the cone, and sticking would move inside it (its rates changed with the
             // springs): the slip ends here. Its event, positive from the start of the next step,
             // fires on its value at the step's end, and a stick shorter than that step went
             // unseen (twin 120-gons, elastic, mu 0.3, 20 deg: 2e-5 off at tol 1e-8).
-            self.apply(Event::ToStick);
+            Self::apply(run, Event::ToStick);
         } else if !slipping && trial > cone * (1.0 + 1e-9) {
-            self.mode.tan = Tan::Slip(after.trial.signum());
-            self.rec.slip_events += 1;
+            run.mode.tan = Tan::Slip(after.trial.signum());
+            run.side.rec.slip_events += 1;
         }
     }
 
@@ -123,11 +125,11 @@ impl<G: PairGeometry> Run<'_, G> {
     /// release went unseen where the push ended within that step (the event fires on its
     /// value at the step's end): twin 120-gons (damped, mu 0.3, 20 deg) with a largest step of
     /// 1 t_ref ended 0.035 from the reference in e_N at every tol, err_est 2 tol.
-    fn release_a_clip(&mut self, before: f64) {
-        let after = self.ode.eval_new(&self.mode, &self.s).1.f_raw;
+    fn release_a_clip(run: &mut Run<'_, Self>, before: f64) {
+        let after = run.side.ode.eval_new(&run.mode, &run.s).1.f_raw;
         // A jump beyond round-off: at a corner turning to another edge the force is unchanged.
         if after > 0.0 && after - before > 1e-9 * (after.abs() + before.abs()) {
-            self.apply(Event::ClipOff);
+            Self::apply(run, Event::ClipOff);
         }
     }
 
@@ -143,22 +145,23 @@ impl<G: PairGeometry> Run<'_, G> {
     /// 60-gon at mu 1.18, tol 1e-7: stuck 6e-6 s before the reference, 52.8 tol off with
     /// err_est 2.9 tol; the reference itself stuck and slipped again at each of its steps,
     /// 103 switches, now 3, to the same answer within 4e-13). The derivative it evaluated
-    /// where the slip goes on (the next step's first stage, `Run::attempt`).
-    pub(super) fn end_a_reversed_slip(&mut self) -> Option<State> {
-        let Tan::Slip(sg) = self.mode.tan else {
+    /// where the slip goes on (the next step's first stage, `OnPair::refresh`).
+    pub(super) fn end_a_reversed_slip(run: &mut Run<'_, Self>) -> Option<State> {
+        let Tan::Slip(sg) = run.mode.tan else {
             return None;
         };
         if !G::CORNERS {
             return None;
         }
-        let (ds, e) = self.ode.eval_new(&self.mode, &self.s);
+        let (ds, e) = run.side.ode.eval_new(&run.mode, &run.s);
         let consistent = || {
-            self.ode
-                .event_value_with(&self.mode, Event::ToStick, &self.s, || e)
+            run.side
+                .ode
+                .event_value_with(&run.mode, Event::ToStick, &run.s, || e)
         };
-        if sg * e.v_t > self.slip_margin && consistent() > 0.0 {
-            self.s[XI] = self.ode.slipping_xi(&e);
-            self.mode.tan = Tan::Stick;
+        if sg * e.v_t > run.side.slip_margin && consistent() > 0.0 {
+            run.s[XI] = run.side.ode.slipping_xi(&e);
+            run.mode.tan = Tan::Stick;
             return None;
         }
         Some(ds)
@@ -166,22 +169,22 @@ impl<G: PairGeometry> Run<'_, G> {
 
     /// A contact ends: round bodies separate for good; bodies with corners fly apart, their
     /// flight skipped up to where they might touch again, or the impact ends.
-    fn separate(&mut self) {
-        self.rec.contact_time += self.t - self.t_touch;
-        let s = &mut self.s;
+    fn separate(run: &mut Run<'_, Self>) {
+        run.side.rec.contact_time += run.t - run.t_touch;
+        let s = &mut run.s;
         let d = s[X].hypot(s[Y]);
-        self.n_sep = [s[X] / d, s[Y] / d];
+        run.side.n_sep = [s[X] / d, s[Y] / d];
         if !G::CORNERS {
-            self.separated = true;
+            run.side.separated = true;
             return;
         }
-        self.mode = Mode {
+        run.mode = Mode {
             clipped: false,
             apart: true,
             tan: Tan::None,
         };
         // Apart, no spring acts; the next touch holds its own (`mode_after_touch`).
-        self.ode.held.springs.clear();
-        self.fly();
+        run.side.ode.held.springs.clear();
+        fly(run);
     }
 }
