@@ -61,10 +61,19 @@ impl<'a> PlacedPolygon<'a> {
 
     /// The world vector `d` in the body frame (R^T d).
     #[inline(always)]
-    fn in_body(&self, d: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn in_body(&self, d: [f64; 2]) -> [f64; 2] {
         [
             self.cos * d[0] + self.sin * d[1],
             -self.sin * d[0] + self.cos * d[1],
+        ]
+    }
+
+    /// The body-frame vector `d` in the world frame (R d).
+    #[inline(always)]
+    pub(crate) fn to_world(&self, d: [f64; 2]) -> [f64; 2] {
+        [
+            self.cos * d[0] - self.sin * d[1],
+            self.sin * d[0] + self.cos * d[1],
         ]
     }
 
