@@ -3,7 +3,7 @@
 //! polygons overlap at all.
 
 use super::{cross, dot, sub};
-use crate::geometry::convex_clip::ClipVertex;
+use crate::geometry::convex_clip::{wrap, ClipVertex};
 use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
 use std::cell::{Cell, RefCell};
 
@@ -259,13 +259,13 @@ fn facing_edge_line(body: &PlacedPolygon, p: [f64; 2]) -> [f64; 3] {
     let w = body.in_body(sub(p, body.centre()));
     let beyond = |j: usize| lines[j][0] * w[0] + lines[j][1] * w[1] - lines[j][2];
     let k = poly.lowest_vertex_near(0, -w[0], -w[1]);
-    let mut j = if beyond(k) >= beyond((k + m - 1) % m) {
+    let mut j = if beyond(k) >= beyond(wrap(k + m - 1, m)) {
         k
     } else {
-        (k + m - 1) % m
+        wrap(k + m - 1, m)
     };
     for _ in 0..m {
-        let (next, prev) = ((j + 1) % m, (j + m - 1) % m);
+        let (next, prev) = (wrap(j + 1, m), wrap(j + m - 1, m));
         if beyond(next) > beyond(j) {
             j = next;
         } else if beyond(prev) > beyond(j) {
