@@ -71,7 +71,7 @@ impl<'a> PlacedPolygon<'a> {
 
     /// The body-frame vector `d` in the world frame (R d).
     #[inline(always)]
-    pub(crate) fn to_world(&self, d: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn in_world(&self, d: [f64; 2]) -> [f64; 2] {
         [
             self.cos * d[0] - self.sin * d[1],
             self.sin * d[0] + self.cos * d[1],

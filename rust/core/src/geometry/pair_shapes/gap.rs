@@ -241,7 +241,7 @@ fn outside_a_line(a: &[[f64; 2]], body: &PlacedPolygon) -> bool {
     );
     let [nx, ny, h] = facing_edge_line(body, nearest);
     // The line in the world frame: n . (p - c) - h, n turned by the body's angle.
-    let n = body.to_world([nx, ny]);
+    let n = body.in_world([nx, ny]);
     let scale = body.polygon().circumradius() + c[0].abs() + c[1].abs();
     a.iter().all(|&p| {
         let beyond = n[0] * (p[0] - c[0]) + n[1] * (p[1] - c[1]) - h;
