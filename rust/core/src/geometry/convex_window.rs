@@ -29,7 +29,8 @@
 //! clip goes on through every edge of B from the same first clip, as the full one.
 
 use super::convex_clip::{
-    along_q, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, ClipVertex, Ring,
+    along_q, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, wrap, ClipVertex,
+    Ring,
 };
 use super::polygon::Polygon;
 use crate::numerics::trig::sin_cos;
@@ -61,10 +62,19 @@ impl<'a> PlacedPolygon<'a> {
 
     /// The world vector `d` in the body frame (R^T d).
     #[inline(always)]
-    fn in_body(&self, d: [f64; 2]) -> [f64; 2] {
+    pub(crate) fn in_body(&self, d: [f64; 2]) -> [f64; 2] {
         [
             self.cos * d[0] + self.sin * d[1],
             -self.sin * d[0] + self.cos * d[1],
+        ]
+    }
+
+    /// The body-frame vector `d` in the world frame (R d).
+    #[inline(always)]
+    pub(crate) fn in_world(&self, d: [f64; 2]) -> [f64; 2] {
+        [
+            self.cos * d[0] - self.sin * d[1],
+            self.sin * d[0] + self.cos * d[1],
         ]
     }
 
@@ -98,7 +108,7 @@ impl<'a> PlacedPolygon<'a> {
         *near = k0;
         let mut tested = 0;
         for forward in [true, false] {
-            let mut k = if forward { k0 } else { (k0 + m - 1) % m };
+            let mut k = if forward { k0 } else { wrap(k0 + m - 1, m) };
             loop {
                 let a = along(k);
                 if a <= limit {
@@ -112,9 +122,9 @@ impl<'a> PlacedPolygon<'a> {
                     return true;
                 }
                 k = if forward {
-                    (k + 1) % m
+                    wrap(k + 1, m)
                 } else {
-                    (k + m - 1) % m
+                    wrap(k + m - 1, m)
                 };
             }
         }
@@ -264,7 +274,7 @@ fn clip_in_window(
         None => {
             #[cfg(test)]
             FALLBACKS.with(|f| f.set(f.get() + 1));
-            let every = (1..m).map(move |k| ((j0 + k) % m) as u32);
+            let every = (1..m).map(move |k| wrap(j0 + k, m) as u32);
             clip_through(a, b, every, (out, next), true)
         }
     }
@@ -392,7 +402,7 @@ fn edges_cutting(
     let lines = &poly.edge_lines;
     let half = m as isize / 2;
     // Each edge by its offset from j0, in (-m/2, m/2].
-    let offset = |j: usize| ((j + m - j0) % m) as isize;
+    let offset = |j: usize| wrap(j + m - j0, m) as isize;
     let signed = |k: isize| if k > half { k - m as isize } else { k };
     let (mut lo, mut hi) = (0isize, 0isize);
     for v in out {
@@ -414,7 +424,7 @@ fn edges_cutting(
         // Forward from the edge leaving corner k, back from the edge arriving at it.
         let mut len = 0;
         for forward in [true, false] {
-            let mut j = if forward { k } else { (k + m - 1) % m };
+            let mut j = if forward { k } else { wrap(k + m - 1, m) };
             while along(j) > limit {
                 let at = signed(offset(j));
                 (lo, hi) = (lo.min(at), hi.max(at));
@@ -423,9 +433,9 @@ fn edges_cutting(
                     return None;
                 }
                 j = if forward {
-                    (j + 1) % m
+                    wrap(j + 1, m)
                 } else {
-                    (j + m - 1) % m
+                    wrap(j + m - 1, m)
                 };
             }
         }
@@ -439,13 +449,13 @@ fn edges_cutting(
 /// The edges of the run from `first`, `len` long, other than `j0`, in the order the full clip
 /// meets them (from `j0` on, around B).
 fn in_clip_order((first, len): (usize, usize), j0: usize, m: usize) -> impl Iterator<Item = u32> {
-    let at = (j0 + m - first) % m;
+    let at = wrap(j0 + m - first, m);
     let (head, tail) = if at < len {
         (at + 1..len, 0..at)
     } else {
         (0..len, 0..0)
     };
-    head.chain(tail).map(move |k| ((first + k) % m) as u32)
+    head.chain(tail).map(move |k| wrap(first + k, m) as u32)
 }
 
 #[cfg(test)]

@@ -19,7 +19,7 @@ use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
 use disc_polygon::{crossing_edges, disc_polygon, held_crossings_value, DiscRole};
-use gap::{distance_to_polygon, inside, polygons_overlap, vertices_distance};
+use gap::{distance_to_polygon, inside, polygons_overlap, separated, vertices_distance};
 use polygon_polygon::{
     held_overlap, held_overlap_value, held_patch, placed_patch, polygon_patch, Extras,
 };
@@ -313,15 +313,23 @@ impl<'a> ShapePair<'a> {
             let (pa, pb) = &mut *cell.borrow_mut();
             match (self.particle, self.partner) {
                 (PairBody::Polygon(a), PairBody::Polygon(b)) => {
+                    let (body_a, body_b) = placed_pair((a, b), q);
                     place_into(pa, a, at, q[2]);
                     place_into(pb, b, [0.0, 0.0], q[3]);
-                    if polygons_overlap(pa, pb, at) {
-                        return 0.0;
+                    let to_b = vertices_distance(pa, pb, &body_b, 1);
+                    let to_a = vertices_distance(pb, pa, &body_a, 0);
+                    let apart = to_b.min(to_a);
+                    // Overlapping, 0; else the corners' least distance. A corner inside the
+                    // other body (0) and a line of one body with the other wholly outside
+                    // (apart) tell it without the clip.
+                    if apart == 0.0 || separated((pa, &body_a), (pb, &body_b)) {
+                        return apart;
                     }
-                    let [ra, rb] = self.circumradii();
-                    let to_b = vertices_distance(pa, pb, [0.0, 0.0], rb);
-                    let to_a = vertices_distance(pb, pa, at, ra);
-                    to_b.min(to_a)
+                    if polygons_overlap(&body_a, &body_b, at) {
+                        0.0
+                    } else {
+                        apart
+                    }
                 }
                 (PairBody::Disc(r), PairBody::Polygon(b)) => {
                     place_into(pb, b, [0.0, 0.0], q[3]);

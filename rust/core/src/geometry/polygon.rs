@@ -186,7 +186,9 @@ impl Polygon {
             let v = &self.vertices[i];
             s * v.x + c * v.y
         };
-        let (mut k, mut hk) = (near % n, h(near % n));
+        // A hint is almost always a corner already: no integer division for it.
+        let near = if near < n { near } else { near % n };
+        let (mut k, mut hk) = (near, h(near));
         for _ in 0..MAX_DESCENT {
             let next = if k + 1 == n { 0 } else { k + 1 };
             let prev = if k == 0 { n - 1 } else { k - 1 };

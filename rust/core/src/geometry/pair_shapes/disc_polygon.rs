@@ -3,6 +3,7 @@
 
 use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::{assemble, cross, dot, sub, ShapePatch};
+use crate::geometry::convex_clip::wrap;
 use crate::geometry::disc::disc_segment_at;
 use std::cell::RefCell;
 
@@ -192,7 +193,7 @@ fn clip_by_circle(
 ) {
     let n = verts.len();
     for j in 0..n {
-        let (p, q) = (verts[j], verts[(j + 1) % n]);
+        let (p, q) = (verts[j], verts[wrap(j + 1, n)]);
         let d = sub(q, p);
         let Some((t0, t1)) = line_roots(p, d, r) else {
             continue;
@@ -270,10 +271,10 @@ fn held_clip(
     let mut j = entry as usize;
     while j != exit as usize {
         // The corner at the end of edge j, inside the circle.
-        j = (j + 1) % n;
+        j = wrap(j + 1, n);
         out.push((verts[j], false));
         exits.push(false);
-        edges.push((j + n - 1) % n);
+        edges.push(wrap(j + n - 1, n));
     }
     out.push((at(e_out, t_out), true));
     exits.push(true);

@@ -3,7 +3,9 @@
 //! polygons overlap at all.
 
 use super::{cross, dot, sub};
-use std::cell::RefCell;
+use crate::geometry::convex_clip::{wrap, ClipVertex};
+use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
+use std::cell::{Cell, RefCell};
 
 /// Whether `p` lies inside (or on) the counter-clockwise convex polygon `b`.
 pub(super) fn inside(p: [f64; 2], b: &[[f64; 2]]) -> bool {
@@ -39,16 +41,18 @@ pub(super) fn distance_to_polygon(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
 /// 1024-gon fifty times smaller spent two thirds of its impact in this distance.
 fn distance_from_corner(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
     let n = b.len();
-    let side = |j: usize| cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) <= 0.0;
+    // The corner after j without an integer division (a third of this scan's time).
+    let next = |j: usize| if j + 1 == n { 0 } else { j + 1 };
+    let side = |j: usize| cross(sub(b[next(j)], b[j]), sub(p, b[j])) <= 0.0;
     let (mut best, mut outside) = (f64::INFINITY, false);
     let (mut before, mut here) = (side(n - 1), side(0));
     for j in 0..n {
-        let after = side((j + 1) % n);
+        let after = side(next(j));
         if here {
-            outside |= cross(sub(b[(j + 1) % n], b[j]), sub(p, b[j])) < 0.0;
+            outside |= cross(sub(b[next(j)], b[j]), sub(p, b[j])) < 0.0;
         }
         if before || here || after {
-            best = best.min(segment_distance2(p, b[j], b[(j + 1) % n]));
+            best = best.min(segment_distance2(p, b[j], b[next(j)]));
         }
         (before, here) = (here, after);
     }
@@ -59,84 +63,298 @@ fn distance_from_corner(p: [f64; 2], b: &[[f64; 2]]) -> f64 {
     }
 }
 
-/// Whether the convex polygons `a` (centred near `q`) and `b` overlap: the O(n + m) clip.
-pub(super) fn polygons_overlap(a: &[[f64; 2]], b: &[[f64; 2]], q: [f64; 2]) -> bool {
+/// [`distance_from_corner`] where the polygon `b` has many corners: read from the edges near
+/// the corner `p` where that gives the same value bit for bit ([`near_edges_distance`]), else
+/// from every edge facing it. `body` is `b` as placed (its body frame), `hint` where the search
+/// of its corner farthest along p started last.
+fn corner_distance(p: [f64; 2], b: &[[f64; 2]], body: &PlacedPolygon, hint: &mut usize) -> f64 {
+    if b.len() > FEW_EDGES {
+        if let Some(d) = near_edges_distance(p, b, body, hint) {
+            return d;
+        }
+    }
+    distance_from_corner(p, b)
+}
+
+/// Polygons of at most this many corners are measured edge by edge ([`distance_from_corner`]):
+/// the search of [`near_edges_distance`] costs more than it spares.
+const FEW_EDGES: usize = 32;
+
+/// The distance from the corner `p`, outside the placed polygon `b` (`body`), to it, measured
+/// on the edges whose polar angles about b's centroid lie near p's only, where that is the
+/// value of every edge's ([`distance_to_polygon`]) bit for bit; `None` where no edge of the
+/// window has p outside its line (p inside b, or on its boundary to round-off).
+///
+/// The window grows from b's corner farthest along p, edge by edge both ways. Every point of
+/// b whose polar angle differs from p's (w = p - centroid, in b's frame) by at least beta lies
+/// within b's circumradius R of the centroid, so at least sqrt(|w|^2 + R^2 - 2 |w| R cos(beta))
+/// from p where |w| cos(beta) >= R, else |w| sin(beta) (|w| past a right angle). Once the
+/// corners where the window stops, one each side of w's direction, bound the edges beyond them
+/// by more than the window's least squared distance (by a factor 1 + [`DISTANCE_MARGIN`] and
+/// the round-off of the placed corners, of w and of the bound), none of those edges is nearer
+/// and their computed distances are larger: the least over the window is the least over every
+/// edge. A 1024-gon's corner far from the body measured every edge (a pentagon flying about a
+/// 1024-gon fifty times smaller spent two thirds of its impact there).
+fn near_edges_distance(
+    p: [f64; 2],
+    b: &[[f64; 2]],
+    body: &PlacedPolygon,
+    hint: &mut usize,
+) -> Option<f64> {
+    let n = b.len();
+    let poly = body.polygon();
+    let corners = poly.vertices();
+    let w = body.in_body(sub(p, body.centre()));
+    let w2 = dot(w, w);
+    let k = poly.lowest_vertex_near(*hint, -w[0], -w[1]);
+    *hint = k;
+    let next = |j: usize| if j + 1 == n { 0 } else { j + 1 };
+    let prev = |j: usize| if j == 0 { n - 1 } else { j - 1 };
+    // Edge j's squared distance and whether p lies outside its line, as every edge's scan
+    // computes them.
+    let measure = |j: usize| {
+        let (b0, b1) = (b[j], b[next(j)]);
+        let outside = cross(sub(b1, b0), sub(p, b0)) < 0.0;
+        (segment_distance2(p, b0, b1), outside)
+    };
+    // How far corner i lies from w's direction: the turn from w to it (> 0 counter-clockwise)
+    // and the bound on the squared distance to every point of b at least that far round.
+    let (radius, len_w) = (poly.circumradius(), w2.sqrt());
+    let beyond = |i: usize| {
+        let v = [corners[i].x, corners[i].y];
+        (cross(w, v), angular_bound2(w, len_w, v, radius))
+    };
+    // The round-off of the squared distances and bounds (the placed corners, w, the bound's
+    // cancellations), a few ulps of the coordinates squared with a wide margin.
+    let c = body.centre();
+    let scale = poly.circumradius() + c[0].abs() + c[1].abs() + p[0].abs() + p[1].abs();
+    let slack = 1e-14 * scale * scale;
+    let bounds = |bound2: f64, best: f64| bound2 - slack >= best * (1.0 + DISTANCE_MARGIN);
+    let (mut best, mut outside) = (f64::INFINITY, false);
+    let mut take = |j: usize, best: &mut f64| {
+        let (d2, out) = measure(j);
+        *best = best.min(d2);
+        outside |= out;
+    };
+    // The edges at corner k, then on each side until a corner past w's direction bounds the
+    // rest (or every edge is taken).
+    take(prev(k), &mut best);
+    take(k, &mut best);
+    let mut taken = 2;
+    let (mut ahead, mut behind) = (next(k), prev(k));
+    while taken < n {
+        let (turn, bound2) = beyond(ahead);
+        if turn >= 0.0 && bounds(bound2, best) {
+            break;
+        }
+        take(ahead, &mut best);
+        ahead = next(ahead);
+        taken += 1;
+    }
+    while taken < n {
+        let (turn, bound2) = beyond(behind);
+        if turn <= 0.0 && bounds(bound2, best) {
+            break;
+        }
+        behind = prev(behind);
+        take(behind, &mut best);
+        taken += 1;
+    }
+    outside.then(|| best.sqrt())
+}
+
+/// A lower bound on the squared distance from the point w to every point within `radius` of
+/// the origin whose direction differs from w's (|w| = `len_w`) by at least the angle beta that
+/// v's direction makes with it: sqrt(|w|^2 + R^2 - 2 |w| R cos(beta)) where |w| cos(beta) >= R
+/// (the nearest such point on the circle), else |w| sin(beta) (on the ray at beta), and |w|
+/// past a right angle.
+fn angular_bound2(w: [f64; 2], len_w: f64, v: [f64; 2], radius: f64) -> f64 {
+    let along = dot(w, v);
+    if along <= 0.0 {
+        return dot(w, w);
+    }
+    let reach = along / dot(v, v).sqrt();
+    if reach >= radius {
+        let gap = len_w - radius;
+        gap * gap + 2.0 * radius * (len_w - reach)
+    } else {
+        let turn = cross(w, v);
+        turn * turn / dot(v, v)
+    }
+}
+
+/// The relative margin on squared distances by which the edges beyond the window of
+/// [`near_edges_distance`] must be farther (beside the absolute one of the round-off): far
+/// above the few ulps of the formulas, far below a window's growth.
+const DISTANCE_MARGIN: f64 = 1e-9;
+
+/// Whether the placed convex polygons `a` (centred at `q`) and `b` overlap: the windowed clip,
+/// whose answer is the O(n + m) clip's (`convex_window.rs`).
+pub(super) fn polygons_overlap(a: &PlacedPolygon, b: &PlacedPolygon, q: [f64; 2]) -> bool {
     thread_local! {
-        static BUF: RefCell<PlacedClip> = const { RefCell::new((Vec::new(), Vec::new())) };
+        static BUF: RefCell<(Vec<ClipVertex>, WindowScratch)> = RefCell::default();
     }
     BUF.with(|cell| {
-        let (out, next) = &mut *cell.borrow_mut();
-        crate::geometry::convex_clip::clip_convex(a, b, q, out, next)
+        let (out, scratch) = &mut *cell.borrow_mut();
+        clip_windowed(a, b, q, out, scratch)
     })
 }
 
-/// The clip's two buffers.
-type PlacedClip = (
-    Vec<crate::geometry::convex_clip::ClipVertex>,
-    Vec<crate::geometry::convex_clip::ClipVertex>,
-);
+/// Whether one polygon's corners (placed, and the body) all lie outside the line of an edge
+/// of the other by more than the round-off of the clip's arithmetic: then the two are apart,
+/// and the clip finds them so (every vertex it keeps lies within its round-off of both bodies).
+/// The corners tried are those of the polygon with fewer, against the line of the other's
+/// edges facing their corner nearest its centroid. `false` where that does not show it.
+pub(super) fn separated(
+    (a, body_a): (&[[f64; 2]], &PlacedPolygon),
+    (b, body_b): (&[[f64; 2]], &PlacedPolygon),
+) -> bool {
+    // The polygon of fewer corners against a line of the other: a few operations (the other
+    // way round, a 1024-gon's every corner, cost more than the clip it spares).
+    if a.len() <= b.len() {
+        outside_a_line(a, body_b)
+    } else {
+        outside_a_line(b, body_a)
+    }
+}
 
-/// The smallest distance from a vertex of `a` to polygon `b` (centred at `centre`, circumradius
-/// `r`), both convex and apart: vertices farther from the centre than r plus the best distance
-/// so far cannot be nearer, so only the few facing `b` are measured against its edges.
-pub(super) fn vertices_distance(a: &[[f64; 2]], b: &[[f64; 2]], centre: [f64; 2], r: f64) -> f64 {
-    let reach = |p: [f64; 2]| {
-        let d = sub(p, centre);
-        dot(d, d).sqrt() - r
+/// Whether every corner of `a` lies outside one line of `body`'s edges, by a margin
+/// ([`separated`]).
+fn outside_a_line(a: &[[f64; 2]], body: &PlacedPolygon) -> bool {
+    let c = body.centre();
+    let dist2 = |p: [f64; 2]| {
+        let d = sub(p, c);
+        dot(d, d)
     };
-    let Some(first) = a
+    let Some(&first) = a.first() else {
+        return false;
+    };
+    let nearest = a.iter().fold(
+        first,
+        |best, &p| {
+            if dist2(p) < dist2(best) {
+                p
+            } else {
+                best
+            }
+        },
+    );
+    let [nx, ny, h] = facing_edge_line(body, nearest);
+    // The line in the world frame: n . (p - c) - h, n turned by the body's angle.
+    let n = body.in_world([nx, ny]);
+    let scale = body.polygon().circumradius() + c[0].abs() + c[1].abs();
+    a.iter().all(|&p| {
+        let beyond = n[0] * (p[0] - c[0]) + n[1] * (p[1] - c[1]) - h;
+        beyond > SEPARATION * (scale + p[0].abs() + p[1].abs())
+    })
+}
+
+/// The line of `body`'s edges (body frame: unit outward normal and offset) that the point `p`
+/// lies farthest outside of, or near it: from the edges at the corner farthest along p,
+/// along the boundary while the lines lie farther inside of p.
+fn facing_edge_line(body: &PlacedPolygon, p: [f64; 2]) -> [f64; 3] {
+    let poly = body.polygon();
+    let lines = &poly.edge_lines;
+    let m = lines.len();
+    let w = body.in_body(sub(p, body.centre()));
+    let beyond = |j: usize| lines[j][0] * w[0] + lines[j][1] * w[1] - lines[j][2];
+    let k = poly.lowest_vertex_near(0, -w[0], -w[1]);
+    let mut j = if beyond(k) >= beyond(wrap(k + m - 1, m)) {
+        k
+    } else {
+        wrap(k + m - 1, m)
+    };
+    for _ in 0..m {
+        let (next, prev) = (wrap(j + 1, m), wrap(j + m - 1, m));
+        if beyond(next) > beyond(j) {
+            j = next;
+        } else if beyond(prev) > beyond(j) {
+            j = prev;
+        } else {
+            break;
+        }
+    }
+    lines[j]
+}
+
+/// The margin, relative to the coordinates, by which [`separated`] wants every corner outside
+/// the line: far above the few ulps of the placed corners and of the clip's side tests.
+const SEPARATION: f64 = 1e-12;
+
+thread_local! {
+    /// Where the last searches of each body's corner farthest along a corner of the other
+    /// ended (the particle's, the partner's): the flights measure the gap at nearby places.
+    static HINTS: Cell<[usize; 2]> = const { Cell::new([0, 0]) };
+}
+
+/// The smallest distance from a vertex of `a` to polygon `b` (placed as `body`), both convex and apart: vertices farther from b's centre than its
+/// circumradius plus the best distance so far cannot be nearer, so only the few facing `b` are
+/// measured against its edges ([`corner_distance`]). For many vertices, also those lying
+/// beyond the line of b's edge facing the first vertex measured ([`facing_edge_line`]) by more
+/// than the best so far (a small 1024-gon beside a pentagon's edge lies inside the pentagon's
+/// circumcircle, and every one of its corners was measured): their distances exceed the best,
+/// which they leave as it was, so the least is the same bit for bit. `side` names b's hint
+/// (0 the particle, 1 the partner).
+pub(super) fn vertices_distance(
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+    body: &PlacedPolygon,
+    side: usize,
+) -> f64 {
+    let (centre, r) = (body.centre(), body.polygon().circumradius());
+    let dist2 = |p: [f64; 2]| {
+        let d = sub(p, centre);
+        dot(d, d)
+    };
+    let reach = |p: [f64; 2]| dist2(p).sqrt() - r;
+    // The vertex of least reach, the first of equals: among those of least squared distance
+    // (a relative 1e-9 apart in it, their reaches differ), without a square root for each.
+    let least2 = a.iter().fold(f64::INFINITY, |m, &p| {
+        let d2 = dist2(p);
+        if d2 < m {
+            d2
+        } else {
+            m
+        }
+    });
+    let by_reach = |x: &[f64; 2], y: &[f64; 2]| reach(*x).total_cmp(&reach(*y));
+    let near = a
         .iter()
         .copied()
-        .min_by(|x, y| reach(*x).total_cmp(&reach(*y)))
+        .filter(|&p| dist2(p) <= least2 * (1.0 + 1e-9));
+    let Some(first) = near
+        .min_by(by_reach)
+        .or_else(|| a.iter().copied().min_by(by_reach))
     else {
         return f64::INFINITY;
     };
-    let mut best = distance_from_corner(first, b);
+    let across = (a.len() > FEW_EDGES).then(|| facing_edge_line(body, first));
+    // The round-off of the bound and of the distances: a few ulps of the coordinates.
+    let slack =
+        |p: [f64; 2]| 1e-13 * (r + centre[0].abs() + centre[1].abs() + p[0].abs() + p[1].abs());
+    let mut hints = HINTS.get();
+    let hint = &mut hints[side];
+    let mut best = corner_distance(first, b, body, hint);
     for &p in a {
+        // Farther than (best + r) by a relative 1e-12 in the squared distance, the reach is
+        // certainly at least best (the test below would fail): no square root.
+        let far = best + r;
+        if dist2(p) > far * far * (1.0 + 1e-12) {
+            continue;
+        }
+        if let Some([nx, ny, h]) = across {
+            let w = body.in_body(sub(p, centre));
+            if nx * w[0] + ny * w[1] - h - slack(p) >= best {
+                continue;
+            }
+        }
         if reach(p) < best {
-            best = best.min(distance_from_corner(p, b));
+            best = best.min(corner_distance(p, b, body, hint));
         }
     }
+    HINTS.set(hints);
     best
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{distance_from_corner, distance_to_polygon};
-
-    /// The corner's distance measures only the edges facing it, and gives every edge's
-    /// minimum bit for bit: points all around random convex polygons (3 to 1024 corners),
-    /// near and far, inside, on vertices and on the extensions of edges.
-    #[test]
-    fn the_corner_distance_is_every_edges_bit_for_bit() {
-        let mut seeded = crate::numerics::seeded::Seeded(7);
-        let mut rng = move || seeded.uniform();
-        for case in 0..400 {
-            let n = [3usize, 4, 5, 12, 120, 1024][case % 6];
-            let aspect = 0.3 + 0.7 * rng();
-            let turn = rng() * std::f64::consts::TAU;
-            let b: Vec<[f64; 2]> = (0..n)
-                .map(|k| {
-                    let t = turn + std::f64::consts::TAU * k as f64 / n as f64;
-                    [t.cos(), aspect * t.sin()]
-                })
-                .collect();
-            for k in 0..50 {
-                let p = match k % 5 {
-                    0 => b[k % n],
-                    1 => {
-                        let (u, v) = (b[k % n], b[(k + 1) % n]);
-                        let s = 1.0 + 3.0 * rng();
-                        [u[0] + s * (v[0] - u[0]), u[1] + s * (v[1] - u[1])]
-                    }
-                    _ => {
-                        let (r, t) = (0.5 + 4.0 * rng(), rng() * std::f64::consts::TAU);
-                        [r * t.cos(), r * t.sin()]
-                    }
-                };
-                let (fast, every) = (distance_from_corner(p, &b), distance_to_polygon(p, &b));
-                assert_eq!(fast.to_bits(), every.to_bits(), "{n}-gon, p {p:?}");
-            }
-        }
-    }
-}
+mod tests;

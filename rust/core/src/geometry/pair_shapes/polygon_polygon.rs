@@ -5,7 +5,7 @@
 use super::potential::{polygon_cap, potential_push, Cap, Crossing};
 use super::springs::corner_springs;
 use super::{assemble_into, sub, ShapePatch};
-use crate::geometry::convex_clip::{clip_convex, edge_crossing, ClipVertex, EdgeLine, Ring};
+use crate::geometry::convex_clip::{clip_convex, edge_crossing, wrap, ClipVertex, EdgeLine, Ring};
 use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
 use crate::geometry::pair::HeldSprings;
 use std::cell::RefCell;
@@ -268,10 +268,10 @@ fn meet<R: Ring + ?Sized>(l1: EdgeLine, l2: EdgeLine, pa: &R, pb: &R) -> [f64; 2
         EdgeLine::B(j) => ends(pb, j),
     };
     match (l1, l2) {
-        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == (i as usize + 1) % pa.count() => {
+        (EdgeLine::A(i), EdgeLine::A(k)) if k as usize == wrap(i as usize + 1, pa.count()) => {
             pa.corner(k as usize)
         }
-        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == (j as usize + 1) % pb.count() => {
+        (EdgeLine::B(j), EdgeLine::B(k)) if k as usize == wrap(j as usize + 1, pb.count()) => {
             pb.corner(k as usize)
         }
         // Along the particle's edge, as the clip takes it (`convex_clip::exact_position`).
@@ -365,7 +365,7 @@ fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
     let len = out.len();
     let o = out[k0].p;
     let forward = polygon_cap((k0..=k1).map(|k| out[k].p), o);
-    let back = polygon_cap((k1..=k0 + len).map(|k| out[k % len].p), o);
+    let back = polygon_cap((k1..=k0 + len).map(|k| out[wrap(k, len)].p), o);
     let particle_first = matches!(out[k0].after, crate::geometry::convex_clip::EdgeLine::A(_));
     if particle_first {
         [forward, back]
