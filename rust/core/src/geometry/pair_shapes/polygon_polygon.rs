@@ -123,7 +123,16 @@ fn patch_of<R: Ring + ?Sized>(
     (points, p): (&mut Vec<([f64; 2], bool)>, &mut ShapePatch),
 ) -> bool {
     let (c0, c1) = (out[k0], out[k1]);
-    let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
+    // The potential reads the two caps; the whole overlap is their sum (one pass over the
+    // vertices rather than two: its shoelace terms are theirs, summed in another order).
+    let caps = (extras == Extras::Push).then(|| caps_of(out, (k0, k1)));
+    let whole = match caps {
+        Some([c, d]) => Cap {
+            area: c.area + d.area,
+            moment: [c.moment[0] + d.moment[0], c.moment[1] + d.moment[1]],
+        },
+        None => polygon_cap(out.iter().map(|v| v.p), c0.p),
+    };
     if !(whole.area > 0.0) {
         return false;
     }
@@ -153,7 +162,7 @@ fn patch_of<R: Ring + ?Sized>(
                     partner: edge_normal(pb, j),
                 }
             };
-            let caps = caps_of(out, (k0, k1));
+            let caps = caps.expect("the caps of the push");
             (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
         }
         Extras::Nothing => {}
