@@ -333,9 +333,13 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
 }
 
 /// Each vertex of the intersection `out` of `a` and `b` at its exact position
-/// ([`exact_position`]).
+/// ([`exact_position`]). A corner of A is already there: the clips copy A's corners as read
+/// (`first_clip_run`) and never move a vertex they keep, so it is not placed again.
 pub(crate) fn set_exact_positions<R: Ring + ?Sized>(out: &mut [ClipVertex], a: &R, b: &R) {
     for v in out.iter_mut() {
+        if let (EdgeLine::A(_), EdgeLine::A(_)) = (v.before, v.after) {
+            continue;
+        }
         v.p = exact_position(v, a, b);
     }
 }

@@ -499,7 +499,8 @@ fn assemble(
     across: Option<[f64; 2]>,
 ) -> Option<ShapePatch> {
     let mut p = ShapePatch::default();
-    assemble_into(&mut p, q, (area, centroid), chord, points, across).then_some(p)
+    let corners = points.iter().map(|&(x, _)| x);
+    assemble_into(&mut p, q, (area, centroid), chord, corners, across).then_some(p)
 }
 
 /// [`assemble`] written into `p` (no springs, potential or push: those of `p` are left as
@@ -509,7 +510,7 @@ fn assemble_into(
     q: [f64; 2],
     (area, centroid): (f64, [f64; 2]),
     [p0, p1]: [[f64; 2]; 2],
-    points: &[([f64; 2], bool)],
+    points: impl Iterator<Item = [f64; 2]>,
     across: Option<[f64; 2]>,
 ) -> bool {
     let d = sub(p1, p0);
@@ -539,10 +540,16 @@ fn assemble_into(
         0.5 * (sq(pb) - sq(pa)),
     ];
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for &(x, _) in points {
+    // Plain comparisons: f64::min and max's NaN handling costs instructions these finite
+    // values do not need (the same result).
+    for x in points {
         let s = dot(n, x);
-        lo = lo.min(s);
-        hi = hi.max(s);
+        if s < lo {
+            lo = s;
+        }
+        if s > hi {
+            hi = s;
+        }
     }
     p.area = area;
     p.depth = (hi - lo).max(0.0);

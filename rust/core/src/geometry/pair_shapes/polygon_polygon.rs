@@ -123,7 +123,16 @@ fn patch_of<R: Ring + ?Sized>(
     (points, p): (&mut Vec<([f64; 2], bool)>, &mut ShapePatch),
 ) -> bool {
     let (c0, c1) = (out[k0], out[k1]);
-    let whole = polygon_cap(out.iter().map(|v| v.p), c0.p);
+    // The potential reads the two caps; the whole overlap is their sum (one pass over the
+    // vertices rather than two: its shoelace terms are theirs, summed in another order).
+    let caps = (extras == Extras::Push).then(|| caps_of(out, (k0, k1)));
+    let whole = match caps {
+        Some([c, d]) => Cap {
+            area: c.area + d.area,
+            moment: [c.moment[0] + d.moment[0], c.moment[1] + d.moment[1]],
+        },
+        None => polygon_cap(out.iter().map(|v| v.p), c0.p),
+    };
     if !(whole.area > 0.0) {
         return false;
     }
@@ -131,20 +140,20 @@ fn patch_of<R: Ring + ?Sized>(
         c0.p[0] + whole.moment[0] / whole.area,
         c0.p[1] + whole.moment[1] / whole.area,
     ];
-    points.clear();
-    points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
     let across = shared_edge_normal(&c0, &c1, pa, pb);
-    if !assemble_into(p, at, (whole.area, centroid), [c0.p, c1.p], points, across) {
+    let corners = out.iter().map(|v| v.p);
+    if !assemble_into(p, at, (whole.area, centroid), [c0.p, c1.p], corners, across) {
         return false;
     }
     match extras {
         Extras::Springs => {
             if let Some((sa, sb)) = all {
+                points.clear();
+                points.extend(out.iter().map(|v| (v.p, v.crossing().is_some())));
                 p.springs = corner_springs(sa, sb, points, at);
             }
         }
         Extras::Push => {
-            let caps = caps_of(out, (k0, k1));
             let crossing = |v: &ClipVertex| {
                 let (i, j) = v.crossing().expect("a crossing");
                 Crossing {
@@ -153,6 +162,7 @@ fn patch_of<R: Ring + ?Sized>(
                     partner: edge_normal(pb, j),
                 }
             };
+            let caps = caps.expect("the caps of the push");
             (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
         }
         Extras::Nothing => {}
@@ -314,6 +324,22 @@ pub(super) fn held_overlap_value<R: Ring + ?Sized>(pa: &R, pb: &R, held: &HeldSp
 /// The two crossings farthest apart (the only two in a shallow contact; docs/model.md 17.8
 /// states the rule for more).
 fn farthest_crossings(out: &[ClipVertex]) -> Option<(usize, usize)> {
+    // Almost always exactly two: told in one pass over the vertices.
+    let mut found = [0usize; 2];
+    let mut count = 0;
+    for (k, v) in out.iter().enumerate() {
+        if v.crossing().is_some() {
+            if count < 2 {
+                found[count] = k;
+            }
+            count += 1;
+        }
+    }
+    match count {
+        0 | 1 => return None,
+        2 => return Some((found[0], found[1])),
+        _ => {}
+    }
     let mut best: Option<(f64, usize, usize)> = None;
     let crossings = || {
         out.iter()
