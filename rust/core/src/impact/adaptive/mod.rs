@@ -46,6 +46,7 @@ mod plate;
 mod rules;
 mod run;
 mod side;
+mod stages;
 mod step;
 mod switches;
 
@@ -64,6 +65,7 @@ pub(crate) use rules::{
 };
 pub(crate) use run::Run;
 pub(crate) use side::AdaptiveSide;
+pub(crate) use stages::{LinearSlip, TangentialStages};
 pub(crate) use switches::{
     first_positive_sample, locate_switch, sampled_first_switch, switch_precision, TANGENTIAL_PARTS,
 };

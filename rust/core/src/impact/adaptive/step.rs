@@ -1,10 +1,11 @@
 //! One Dormand-Prince step of an impact's ODE ([`crate::integrate::dopri`]) with what the
-//! switches need from its stages: a pull of the clipped normal force, the span of the
-//! stick -> slip event function, the slip stages, and the evaluation at its end.
+//! switches need from its stages: a pull of the clipped normal force, the stick or slip
+//! values at the stages ([`TangentialStages`]), and the evaluation at its end.
 
 use super::law::{Eval, Reference};
 use super::piece::{Mode, Tan};
 use super::rules::state_at_switch;
+use super::stages::TangentialStages;
 use super::{State, NS, XI};
 use crate::integrate::dopri::{DenseStep, C};
 
@@ -22,12 +23,10 @@ pub(super) struct Step {
     /// The first node at which a stage saw the plate pull (F_el + F_d below minus the force
     /// tolerance) while the clip was on: the step integrated across a clip switch.
     pub(super) pull: Option<f64>,
-    /// In stick: the least and the largest value of the stick -> slip event function over
-    /// the stages' states, the end's included (see `Reference::stays_stuck`).
-    pub(super) stick_span: (f64, f64),
-    /// In slip: the normal force and the contact point's tangential velocity at the stages'
-    /// states (the end's last), see `Reference::stays_slipping`.
-    pub(super) slip_stages: [(f64, f64); 6],
+    /// In stick the stick -> slip function's span over the stages, in slip the normal force
+    /// and the contact point's tangential velocity at each (see `Reference::stays_stuck`,
+    /// `Reference::stays_slipping`).
+    pub(super) tangential: TangentialStages,
     /// The evaluation at `y1` (the last stage, first-same-as-last): its derivative is
     /// `k_end()`; reused for the event functions at the step's end and for the next step.
     pub(super) end: Eval,
@@ -46,8 +45,8 @@ impl Reference<'_> {
     /// scaled error norm (<= 1: accepted).
     pub(super) fn dp_step(&self, m: &Mode, y0: &State, k1: &State, h: f64, out: &mut Step) -> f64 {
         let mut pull = None;
-        let mut stick_span = (f64::INFINITY, f64::NEG_INFINITY);
-        let (end, slip_stages) = (&mut out.end, &mut out.slip_stages);
+        let (end, tangential) = (&mut out.end, &mut out.tangential);
+        tangential.begin();
         // What the stages test of the mode, read once: left to each stage, the mode's fields
         // were loaded and tested again at every one of them.
         let (watch_pull, tan) = (m.clipped(), m.tan);
@@ -58,16 +57,12 @@ impl Reference<'_> {
                 pull = Some(C[st]);
             }
             match tan {
-                Tan::Stick => {
-                    let g = self.to_slip_value(end);
-                    stick_span = (stick_span.0.min(g), stick_span.1.max(g));
-                }
-                Tan::Slip(_) => slip_stages[st - 1] = (end.forces.fy, end.v_t),
+                Tan::Stick => tangential.stick(self.to_slip_value(end)),
+                Tan::Slip(_) => tangential.slip(st, end.forces.fy, end.v_t),
                 Tan::None | Tan::Free => {}
             }
         });
         out.pull = pull;
-        out.stick_span = stick_span;
         self.scaled_norm(m, &out.dp.err)
     }
 

@@ -5,9 +5,9 @@
 
 use super::law::{Eval, Reference};
 use super::piece::{Event, Mode, Tan, Touch};
+use super::stages::LinearSlip;
 use super::step::Step;
 use super::{State, OM, VY};
-use crate::integrate::dopri::C;
 use crate::numerics::roots;
 
 impl Reference<'_> {
@@ -55,22 +55,18 @@ impl Reference<'_> {
     }
 
     /// Whether a stick step stays inside the Coulomb cone by more than its event function
-    /// varies over the step's stages: then no sample between them can find a slip phase, and
-    /// the law need not be evaluated for them (two evaluations per stick step, where the
-    /// stages' own evaluations already give the function at seven points).
+    /// varies over the step's stages ([`super::stages::TangentialStages::stays_stuck`]): two
+    /// evaluations per stick step skipped, where the stages' own evaluations already give the
+    /// function at seven points.
     fn stays_stuck(&self, m: &Mode, step: &Step, start: (&State, &Eval)) -> bool {
         let g0 = self.event_value_given(m, Event::ToSlip, &step.y0, Some(start));
-        let (lo, hi) = (step.stick_span.0.min(g0), step.stick_span.1.max(g0));
-        hi + STUCK_SPANS * (hi - lo) < 0.0
+        step.tangential.stays_stuck(g0)
     }
 
     /// Whether a slip step keeps slipping by a wide margin, from the stages' normal forces and
-    /// tangential velocities alone: the slip -> stick function is mu dF_n/dt + s (k_t v_t +
-    /// c_t dv_t/dt) (linear spring), and while the contact point slides against the force
-    /// (s v_t < 0) its term k_t s v_t outweighs the rates' bounds (twice the largest
-    /// difference quotient between the stages' values, the sliding velocity's excursion
-    /// between stages included), then no sample can find stick, and its two evaluations of the
-    /// law (with the rates: two more off the disc) are skipped.
+    /// tangential velocities alone ([`super::stages::TangentialStages::stays_slipping`], linear
+    /// spring): its two evaluations of the law (with the rates: two more off the disc) are
+    /// skipped.
     fn stays_slipping(&self, m: &Mode, step: &Step, start: &Eval) -> bool {
         let Tan::Slip(sg) = m.tan else {
             return false;
@@ -79,27 +75,14 @@ impl Reference<'_> {
             return false;
         }
         let (k_t, _, c_t) = self.model.spring(0.0);
-        let h = step.h_len();
-        // (node, F_n, v_t) in the order of the nodes: the start, stages 2 ... 6, the end.
-        let mut at = [(0.0, start.forces.fy, start.v_t); 7];
-        for (i, &(f, v)) in step.slip_stages.iter().enumerate() {
-            at[i + 1] = (C[i + 1], f, v);
-        }
-        let (mut rate_f, mut rate_v, mut sliding) = (0.0f64, 0.0f64, f64::NEG_INFINITY);
-        for w in at.windows(2) {
-            let ((c0, f0, v0), (c1, f1, v1)) = (w[0], w[1]);
-            sliding = sliding.max(sg * v0).max(sg * v1);
-            // Nodes closer than 0.05 of the step (the last stage and the end, both at 1)
-            // carry their states' errors more than their rates.
-            if c1 - c0 >= 0.05 {
-                rate_f = rate_f.max((f1 - f0).abs() / ((c1 - c0) * h));
-                rate_v = rate_v.max((v1 - v0).abs() / ((c1 - c0) * h));
-            }
-        }
-        let (rate_f, rate_v) = (2.0 * rate_f, 2.0 * rate_v);
-        let widest_gap = 0.5 * h;
-        let bound = k_t * (sliding + rate_v * widest_gap) + self.mu * rate_f + c_t * rate_v;
-        bound < 0.0 && bound.is_finite()
+        let spring = LinearSlip {
+            mu: self.mu,
+            k_t,
+            c_t,
+        };
+        let start = (start.forces.fy, start.v_t);
+        step.tangential
+            .stays_slipping(sg, start, step.h_len(), spring)
     }
 
     /// Whether the corner next to the run that event `ev` watches stays above the plate through
@@ -297,10 +280,6 @@ pub(crate) fn switch_precision(local_tol: f64, jumps: bool) -> f64 {
         local_tol.clamp(1e-10, 1e-6)
     }
 }
-
-/// How many times its variation over a step's stages the stick -> slip event function must
-/// stay below zero for the step to skip its samples (see `Reference::stays_stuck`).
-const STUCK_SPANS: f64 = 2.0;
 
 /// Into how many parts a step is cut to look for a stick or slip phase inside it (see
 /// [`interior_samples`]), on the plate and on a pair.

@@ -22,7 +22,7 @@ use crate::error::Result;
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     error_estimate, root_exponent, state_at_switch, turning_point, AdaptiveSide, ErrorSum, Limits,
-    Run, SwitchKind,
+    Run, SwitchKind, TangentialStages,
 };
 use crate::impact::flight::{self, Approach, Jump};
 use crate::impact::record::{separation_normal, Bodies, Ending, Record, StopReason, Trace};
@@ -87,17 +87,31 @@ pub(super) struct OnPair<'a, G> {
     kept: RefCell<KeptSamples>,
     /// The largest overlap and area inside the piece being taken, found with its switch.
     extremes: Option<[f64; 2]>,
-    /// The derivative a slip going on was tested with at the step's end, and the mode then
-    /// (`end_a_reversed_slip`): the next step's first stage where the chatter rules keep it.
-    k_end: Option<(State, Mode)>,
+    /// The derivative a slip going on was tested with at the step's end, the law's evaluation
+    /// there, and the mode then (`end_a_reversed_slip`): the next step's first stage where the
+    /// chatter rules keep it.
+    k_end: Option<(State, Eval, Mode)>,
+    /// The law's evaluation at the state the next step starts from, in its mode, where the
+    /// first stage was taken from it (the stage filters' value at the start,
+    /// [`OnPair::stays_in_tangential_mode`]).
+    start: Option<(Mode, Eval)>,
+    /// The step just taken stayed in its slip by the stages' bound: its end cannot have turned
+    /// the sliding (`end_a_reversed_slip` need not evaluate the law there).
+    pub(super) firm_slip: bool,
 }
 
-/// A Dormand-Prince step of the pair's ODE and the law's evaluation at its end (its last
-/// stage, first same as last).
+/// A Dormand-Prince step of the pair's ODE, the law's evaluation at its end (its last stage,
+/// first same as last), and what the stage filters read of its stages.
 #[derive(Default)]
 pub(super) struct PairStep {
     dp: DenseStep<NS, NS>,
     end: Eval,
+    /// In stick the stick -> slip function's span over the stages, in slip the normal force
+    /// and the tangential velocity at each.
+    tangential: TangentialStages,
+    /// The overlap at each stage (past the parting the tangential functions say nothing, and
+    /// the stages bound nothing).
+    depths: [f64; 6],
 }
 
 /// The run of a pair impact at first touch.
@@ -175,6 +189,8 @@ fn begin<'a, 't, G: PairGeometry>(
         kept: RefCell::default(),
         extremes: None,
         k_end: None,
+        start: None,
+        firm_slip: false,
     };
     let h = lim.h_max.min(lim.h_singular);
     Run::new(side, (s, mode, k1), h, lim, trace)
@@ -194,8 +210,16 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     fn dp_step(&self, m: &Mode, s: &State, k1: &State, h: f64, out: &mut PairStep) -> f64 {
         let (ode, mode) = (&self.ode, *m);
         let mut at_end = Eval::default();
+        let (tangential, depths) = (&mut out.tangential, &mut out.depths);
+        tangential.begin();
         out.dp.take(s, k1, h, |stage, y, k| {
             let e = ode.eval(&mode, y, k);
+            depths[stage - 1] = e.depth;
+            match mode.tan {
+                Tan::Stick => tangential.stick(ode.to_slip_value(&e)),
+                Tan::Slip(_) => tangential.slip(stage, e.f_raw, e.v_t),
+                Tan::None | Tan::Free => {}
+            }
             if stage == 6 {
                 at_end = e;
             }
@@ -234,8 +258,10 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         let side = &mut run.side;
         let ignored = std::mem::take(&mut side.ignored);
         side.step_ignored = ignored;
+        let firm = side.stays_in_tangential_mode(&run.mode, step);
+        side.firm_slip = firm && matches!(run.mode.tan, Tan::Slip(_));
         let samples = StepSamples::new(&side.ode, run.mode, (&step.dp, step.end), &side.kept);
-        let first = first_switch(&samples, ignored);
+        let first = first_switch(&samples, ignored, firm);
         let theta = first.map_or(1.0, |(th, _)| th);
         side.extremes = (theta * step.dp.h_len() > 0.0).then(|| extremes_in(&samples, theta));
         first
@@ -280,7 +306,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
             fly(run);
         } else {
             let k = Self::end_a_reversed_slip(run);
-            run.side.k_end = k.map(|k| (k, run.mode));
+            run.side.k_end = k.map(|(k, e)| (k, e, run.mode));
         }
     }
 
@@ -317,20 +343,26 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         _h_taken: f64,
     ) {
         let side = &mut run.side;
-        let k_end = side.k_end.take().filter(|(_, kept)| run.mode == *kept);
-        run.k1 = if let Some(probe) = side.touch_probe.take() {
-            side.ode.touch_derivative(&run.mode, &run.s, &probe)
-        } else if let Some((k, _)) = k_end {
-            k
+        let k_end = side.k_end.take().filter(|(_, _, kept)| run.mode == *kept);
+        let start;
+        (run.k1, start) = if let Some(probe) = side.touch_probe.take() {
+            let k = side.ode.touch_derivative(&run.mode, &run.s, &probe);
+            (k, None)
+        } else if let Some((k, e, _)) = k_end {
+            (k, Some(e))
         } else if let Some(step) = whole.filter(|_| *mode_step == run.mode && !run.mode.apart) {
             let mut k = step.dp.k_end();
             for (i, rate) in [(X, GX), (Y, GY), (4, W1), (6, W2)] {
                 k[i] = run.s[rate];
             }
-            k
+            // The restoring turn changes no relative velocity at the contact: the end's
+            // normal force, tangential velocity and trial force are the state's.
+            (k, Some(step.end))
         } else {
-            side.ode.eval_new(&run.mode, &run.s).0
+            let (k, e) = side.ode.eval_new(&run.mode, &run.s);
+            (k, Some(e))
         };
+        side.start = start.map(|e| (run.mode, e));
         if let Some(tr) = run.trace.as_deref_mut() {
             push(&run.side, (&run.mode, &run.s, run.t), tr);
         }
@@ -396,6 +428,36 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 }
 
 impl<G: PairGeometry> OnPair<'_, G> {
+    /// Whether the accepted `step` of mode `m` stays stuck or stays slipping throughout, by
+    /// the bound the plate's stages give ([`TangentialStages`]): the stick -> slip function
+    /// |F_trial| - mu F_n at the stages' states (the contact frame's turn and both spins are
+    /// in each value), or in slip, with a linear spring, the stages' normal forces and
+    /// tangential velocities v_t = g.t + a_1 omega_1 + a_2 omega_2 (at a spring stuck at its
+    /// slipping elongation the trial force is the slip's, so the motion's rates are the
+    /// slip's), where the normal force stays positive through the step (near the parting the
+    /// law's rates are not bounded by the stages',
+    /// [`TangentialStages::stays_slipping_in_contact`]). Then its samples inside are skipped.
+    /// Not where the start's evaluation is not kept (a touch), nor where a stage found the
+    /// bodies apart.
+    fn stays_in_tangential_mode(&self, m: &Mode, step: &PairStep) -> bool {
+        let Some((_, start)) = self.start.filter(|(mode, _)| mode == m) else {
+            return false;
+        };
+        if start.depth <= 0.0 || step.depths.iter().any(|&d| d <= 0.0) {
+            return false;
+        }
+        match m.tan {
+            Tan::Stick => step.tangential.stays_stuck(self.ode.to_slip_value(&start)),
+            Tan::Slip(sg) => self.ode.linear_slip().is_some_and(|spring| {
+                let at_start = (start.f_raw, start.v_t);
+                let h = step.dp.h_len();
+                step.tangential
+                    .stays_slipping_in_contact(sg, at_start, h, spring)
+            }),
+            Tan::None | Tan::Free => false,
+        }
+    }
+
     /// The largest component of the absolute errors `err` in units of the local tolerance, in
     /// mode `m` (the spring's elongation only while it sticks: elsewhere it is algebraic; the
     /// dashpot's work is a part of the normal force's, which is controlled, and reported only).

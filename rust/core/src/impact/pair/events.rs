@@ -63,18 +63,23 @@ impl<G: PairGeometry> PairOde<'_, G> {
             Event::Touch => e.depth,
             Event::ClipOn => -e.f_raw,
             Event::ClipOff => e.f_raw,
-            // Where no overlap is resolved (the touch itself) the cone is closed but no spring
-            // acts either: the touch's probe has chosen the mode (`mode_after_touch`).
-            Event::ToSlip if e.depth <= 0.0 => f64::NEG_INFINITY,
-            Event::ToSlip => {
-                // Past the cone by a margin of 1e-9 of it: a spring just set on the cone (at a
-                // slip -> stick switch) is not taken back by round-off.
-                let cap = self.mu * e.f_raw.max(0.0);
-                e.trial.abs() - cap - 1e-9 * (e.trial.abs() + cap)
-            }
+            Event::ToSlip => self.to_slip_value(&e),
             Event::ToStick => self.to_stick_value(m, s, &e),
             Event::Springs => unreachable!("answered above"),
         }
+    }
+
+    /// Stick -> slip: |F_trial| - mu F_n, at evaluation `e`.
+    pub(super) fn to_slip_value(&self, e: &Eval) -> f64 {
+        // Where no overlap is resolved (the touch itself) the cone is closed but no spring
+        // acts either: the touch's probe has chosen the mode (`mode_after_touch`).
+        if e.depth <= 0.0 {
+            return f64::NEG_INFINITY;
+        }
+        // Past the cone by a margin of 1e-9 of it: a spring just set on the cone (at a
+        // slip -> stick switch) is not taken back by round-off.
+        let cap = self.mu * e.f_raw.max(0.0);
+        e.trial.abs() - cap - 1e-9 * (e.trial.abs() + cap)
     }
 
     /// Slip -> stick: mu dF_n/dt - s dF_trial/dt, positive where sticking would move the

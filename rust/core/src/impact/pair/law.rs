@@ -4,7 +4,7 @@
 
 use super::piece::{Eval, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
 use crate::geometry::pair::{HeldSprings, PairGeometry};
-use crate::impact::adaptive::{root_exponent, spring_scale, velocity_scales};
+use crate::impact::adaptive::{root_exponent, spring_scale, velocity_scales, LinearSlip};
 use crate::law::contact::NormalForce;
 use crate::law::pair::dot;
 use crate::model::{Initial, NormalLaw, Pair};
@@ -170,6 +170,23 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let mut ds = [0.0; NS];
         let e = self.eval(m, s, &mut ds);
         (ds, e)
+    }
+
+    /// The linear tangential spring a slip's stage bound reads
+    /// ([`crate::impact::adaptive::TangentialStages::stays_slipping`]); `None` for Mindlin's,
+    /// whose stiffness and damping change with the depth, and for a history that shrinks as
+    /// the contact unloads.
+    pub(super) fn linear_slip(&self) -> Option<LinearSlip> {
+        let law = &self.pair.law;
+        if law.mindlin || law.history.rescales() {
+            return None;
+        }
+        let (k_t, _, c_t) = law.spring(0.0);
+        Some(LinearSlip {
+            mu: self.mu,
+            k_t,
+            c_t,
+        })
     }
 
     /// The spring's elongation that carries the slipping force: -(F_t + c_t v_t) / k_xi.

@@ -4,7 +4,7 @@
 //! that follow from the state rather than from an event function.
 
 use super::adaptive::{fly, OnPair};
-use super::piece::{Event, Mode, State, Tan, X, XI, Y};
+use super::piece::{Eval, Event, Mode, State, Tan, X, XI, Y};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::Run;
 
@@ -146,11 +146,12 @@ impl<G: PairGeometry> OnPair<'_, G> {
     /// err_est 2.9 tol; the reference itself stuck and slipped again at each of its steps,
     /// 103 switches, now 3, to the same answer within 4e-13). The derivative it evaluated
     /// where the slip goes on (the next step's first stage, `OnPair::refresh`).
-    pub(super) fn end_a_reversed_slip(run: &mut Run<'_, Self>) -> Option<State> {
+    pub(super) fn end_a_reversed_slip(run: &mut Run<'_, Self>) -> Option<(State, Eval)> {
         let Tan::Slip(sg) = run.mode.tan else {
             return None;
         };
-        if !G::CORNERS {
+        // A step whose stages kept it sliding against its force (`firm_slip`) ends sliding so.
+        if !G::CORNERS || run.side.firm_slip {
             return None;
         }
         let (ds, e) = run.side.ode.eval_new(&run.mode, &run.s);
@@ -164,7 +165,7 @@ impl<G: PairGeometry> OnPair<'_, G> {
             run.mode.tan = Tan::Stick;
             return None;
         }
-        Some(ds)
+        Some((ds, e))
     }
 
     /// A contact ends: round bodies separate for good; bodies with corners fly apart, their

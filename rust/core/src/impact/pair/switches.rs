@@ -121,10 +121,12 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
 }
 
 /// The first switch of the step's mode inside the accepted step of `samples`: (fraction of
-/// the step, event), the `ignored` switches left out.
+/// the step, event), the `ignored` switches left out; `firm`: the step's stages showed it stays
+/// stuck or stays slipping throughout, so its tangential switch is not looked for.
 pub(super) fn first_switch<G: PairGeometry>(
     samples: &StepSamples<'_, '_, G>,
     ignored: Ignored,
+    firm: bool,
 ) -> Option<(f64, Event)> {
     if ignored.all {
         return None;
@@ -135,7 +137,7 @@ pub(super) fn first_switch<G: PairGeometry>(
     let mut parting = None;
     for ev in ode.candidates(m) {
         let tangential = matches!(ev, Event::ToSlip | Event::ToStick);
-        if (ignored.tangential && tangential) || (ignored.clip && ev == Event::ClipOff) {
+        if ((ignored.tangential || firm) && tangential) || (ignored.clip && ev == Event::ClipOff) {
             continue;
         }
         let precision = ode.switch_precision(ev);
