@@ -9,7 +9,7 @@ use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
 use crate::integrate::dopri::DenseStep;
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 
 /// The switches a step does not look for, where they chattered (the adaptive rules'
 /// remedies, `Chatter`).
@@ -37,6 +37,8 @@ pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) step: &'s DenseStep<NS, NS>,
     /// The last stage's evaluation, at the step's 5th-order end `y1`.
     at_end: Eval,
+    /// The dense output at the step's end, formed once: every candidate event samples it.
+    end_state: OnceCell<State>,
     kept: &'s RefCell<KeptSamples>,
 }
 
@@ -66,7 +68,17 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
             mode,
             step,
             at_end,
+            end_state: OnceCell::new(),
             kept,
+        }
+    }
+
+    /// The dense output at fraction `th` of the step, the same bits as [`DenseStep::at`].
+    pub(super) fn state_at(&self, th: f64) -> State {
+        if th == 1.0 {
+            *self.end_state.get_or_init(|| self.step.at(1.0))
+        } else {
+            self.step.at(th)
         }
     }
 
@@ -112,9 +124,9 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     fn event_value(&self, ev: Event, th: f64) -> f64 {
         if ev == Event::Springs {
             // The held springs' function reads the positions alone.
-            return self.ode.event_value(&self.mode, ev, &self.step.at(th));
+            return self.ode.event_value(&self.mode, ev, &self.state_at(th));
         }
-        let s = self.step.at(th);
+        let s = self.state_at(th);
         self.ode
             .event_value_with(&self.mode, ev, &s, || self.eval_at(th, &s))
     }
