@@ -14,7 +14,9 @@
 //! taken along the motion by a forward difference).
 
 use super::law::{error_scales, PairOde};
-use super::piece::{Eval, Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
+use super::piece::{
+    Eval, Event, Mode, State, Tan, GX, GY, INTERPOLATED, NS, W1, W2, WD, WN, WT, X, XI, Y,
+};
 use super::switches::{first_switch, Ignored, KeptSamples, StepSamples};
 use super::Start;
 use crate::cancel::Cancel;
@@ -104,7 +106,7 @@ pub(super) struct OnPair<'a, G> {
 /// first same as last), and what the stage filters read of its stages.
 #[derive(Default)]
 pub(super) struct PairStep {
-    dp: DenseStep<NS, NS>,
+    dp: DenseStep<NS, INTERPOLATED>,
     end: Eval,
     /// In stick the stick -> slip function's span over the stages, in slip the normal force
     /// and the tangential velocity at each.

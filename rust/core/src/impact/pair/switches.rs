@@ -3,7 +3,7 @@
 //! and slip also sampled inside the step, by the plate's rule.
 
 use super::law::PairOde;
-use super::piece::{Eval, Event, Mode, State, Tan, NS};
+use super::piece::{Eval, Event, Mode, State, Tan, INTERPOLATED, NS};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
@@ -34,7 +34,7 @@ pub(super) struct Ignored {
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
-    pub(super) step: &'s DenseStep<NS, NS>,
+    pub(super) step: &'s DenseStep<NS, INTERPOLATED>,
     /// The last stage's evaluation, at the step's 5th-order end `y1`.
     at_end: Eval,
     /// The dense output at the step's end, formed once: every candidate event samples it.
@@ -59,7 +59,7 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     pub(super) fn new(
         ode: &'s PairOde<'a, G>,
         mode: Mode,
-        (step, at_end): (&'s DenseStep<NS, NS>, Eval),
+        (step, at_end): (&'s DenseStep<NS, INTERPOLATED>, Eval),
         kept: &'s RefCell<KeptSamples>,
     ) -> Self {
         kept.borrow_mut().count = 0;
@@ -85,9 +85,10 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     /// The law's evaluation at fraction `th` of the step.
     pub(super) fn eval_at(&self, th: f64, s: &State) -> Eval {
         // The dense output at the step's end is the last stage's state where it rounds to it
-        // bit for bit (y0 + (y1 - y0) need not).
+        // bit for bit (y0 + (y1 - y0) need not) in the components the law reads.
         if th == 1.0
-            && s.iter()
+            && s[..INTERPOLATED]
+                .iter()
                 .zip(&self.step.y1)
                 .all(|(a, b)| a.to_bits() == b.to_bits())
         {
