@@ -14,7 +14,9 @@
 //! taken along the motion by a forward difference).
 
 use super::law::{error_scales, PairOde};
-use super::piece::{Eval, Event, Mode, State, Tan, GX, GY, NS, W1, W2, WD, WN, WT, X, XI, Y};
+use super::piece::{
+    Eval, Event, Mode, State, Tan, GX, GY, INTERPOLATED, NS, W1, W2, WD, WN, WT, X, XI, Y,
+};
 use super::switches::{first_switch, Ignored, KeptSamples, StepSamples};
 use super::Start;
 use crate::cancel::Cancel;
@@ -104,7 +106,7 @@ pub(super) struct OnPair<'a, G> {
 /// first same as last), and what the stage filters read of its stages.
 #[derive(Default)]
 pub(super) struct PairStep {
-    dp: DenseStep<NS, NS>,
+    dp: DenseStep<NS, INTERPOLATED>,
     end: Eval,
     /// In stick the stick -> slip function's span over the stages, in slip the normal force
     /// and the tangential velocity at each.
@@ -522,15 +524,16 @@ fn push<G: PairGeometry>(side: &OnPair<'_, G>, (m, s, t): (&Mode, &State, f64), 
 /// output.
 fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) -> [f64; 2] {
     let step = samples.step;
+    // The normal velocity reads four components: the others are not formed.
     let g_n = |th: f64| {
-        let s = step.at(th);
-        s[X] * s[GX] + s[Y] * s[GY]
+        let c = |i| step.component_at(th, i);
+        c(X) * c(GX) + c(Y) * c(GY)
     };
     let (a, b) = (g_n(0.0), g_n(theta));
     let at = [Some(theta), turning_point(g_n, a, (theta, b))];
     let mut most = [f64::NEG_INFINITY; 2];
     for th in at.into_iter().flatten() {
-        let e = samples.eval_at(th, &step.at(th));
+        let e = samples.eval_at(th, &samples.state_at(th));
         most = [most[0].max(e.depth), most[1].max(e.area)];
     }
     most

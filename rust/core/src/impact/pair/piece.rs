@@ -19,6 +19,11 @@ pub(super) const XI: usize = 8;
 pub(super) const WN: usize = 9;
 pub(super) const WT: usize = 10;
 pub(super) const WD: usize = 11;
+/// The components a step's dense output forms for its switches and extremes: the law reads
+/// the positions, velocities and spring alone; the works are read at a step's end and at a
+/// switch (where the state is formed whole), so they are not interpolated at every sample
+/// (their coefficients were a fifth of the ones a disc pair's step formed).
+pub(super) const INTERPOLATED: usize = XI + 1;
 
 /// The tangential law of a piece: the plate's.
 pub(super) use crate::impact::adaptive::Tan;

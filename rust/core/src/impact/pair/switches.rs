@@ -3,13 +3,13 @@
 //! and slip also sampled inside the step, by the plate's rule.
 
 use super::law::PairOde;
-use super::piece::{Eval, Event, Mode, State, Tan, NS};
+use super::piece::{Eval, Event, Mode, State, Tan, INTERPOLATED, NS};
 use crate::geometry::pair::PairGeometry;
 use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
 use crate::integrate::dopri::DenseStep;
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 
 /// The switches a step does not look for, where they chattered (the adaptive rules'
 /// remedies, `Chatter`).
@@ -34,9 +34,11 @@ pub(super) struct Ignored {
 pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) ode: &'s PairOde<'a, G>,
     pub(super) mode: Mode,
-    pub(super) step: &'s DenseStep<NS, NS>,
+    pub(super) step: &'s DenseStep<NS, INTERPOLATED>,
     /// The last stage's evaluation, at the step's 5th-order end `y1`.
     at_end: Eval,
+    /// The dense output at the step's end, formed once: every candidate event samples it.
+    end_state: OnceCell<State>,
     kept: &'s RefCell<KeptSamples>,
 }
 
@@ -57,7 +59,7 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     pub(super) fn new(
         ode: &'s PairOde<'a, G>,
         mode: Mode,
-        (step, at_end): (&'s DenseStep<NS, NS>, Eval),
+        (step, at_end): (&'s DenseStep<NS, INTERPOLATED>, Eval),
         kept: &'s RefCell<KeptSamples>,
     ) -> Self {
         kept.borrow_mut().count = 0;
@@ -66,16 +68,27 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
             mode,
             step,
             at_end,
+            end_state: OnceCell::new(),
             kept,
+        }
+    }
+
+    /// The dense output at fraction `th` of the step, the same bits as [`DenseStep::at`].
+    pub(super) fn state_at(&self, th: f64) -> State {
+        if th == 1.0 {
+            *self.end_state.get_or_init(|| self.step.at(1.0))
+        } else {
+            self.step.at(th)
         }
     }
 
     /// The law's evaluation at fraction `th` of the step.
     pub(super) fn eval_at(&self, th: f64, s: &State) -> Eval {
         // The dense output at the step's end is the last stage's state where it rounds to it
-        // bit for bit (y0 + (y1 - y0) need not).
+        // bit for bit (y0 + (y1 - y0) need not) in the components the law reads.
         if th == 1.0
-            && s.iter()
+            && s[..INTERPOLATED]
+                .iter()
                 .zip(&self.step.y1)
                 .all(|(a, b)| a.to_bits() == b.to_bits())
         {
@@ -112,9 +125,9 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     fn event_value(&self, ev: Event, th: f64) -> f64 {
         if ev == Event::Springs {
             // The held springs' function reads the positions alone.
-            return self.ode.event_value(&self.mode, ev, &self.step.at(th));
+            return self.ode.event_value(&self.mode, ev, &self.state_at(th));
         }
-        let s = self.step.at(th);
+        let s = self.state_at(th);
         self.ode
             .event_value_with(&self.mode, ev, &s, || self.eval_at(th, &s))
     }
