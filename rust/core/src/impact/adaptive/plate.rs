@@ -186,20 +186,14 @@ impl<'a> AdaptiveSide for OnPlate<'a> {
         match ev {
             Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
             Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
+            Event::Touch => SwitchKind::Touch,
+            Event::Separate => SwitchKind::Separation,
             _ => SwitchKind::Other,
         }
     }
 
     fn switch_precision(&self, ev: Event) -> f64 {
         self.ode.switch_precision(ev)
-    }
-
-    fn is_touch(ev: Event) -> bool {
-        ev == Event::Touch
-    }
-
-    fn is_separation(ev: Event) -> bool {
-        ev == Event::Separate
     }
 
     /// After a step with the clip held off: the end state decides the clip again.

@@ -291,14 +291,19 @@ const MAX_ZERO_PIECES: u32 = 64;
 /// chatter remedies whatever the precision of their switch.
 const NEGLIGIBLE_PIECE: f64 = 1e-9;
 
-/// The kinds of switch whose chattering has a remedy.
+/// The kinds of switch the loop treats apart: those whose chattering has a remedy, and the
+/// touch and the separation, where the force has its root singularity.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum SwitchKind {
     /// Stick -> slip or slip -> stick.
     Tangential,
     /// The normal force's clip switching on or off.
     Clip,
-    /// Any other (touch, separation, a corner or a spring switching).
+    /// A contact begins.
+    Touch,
+    /// The contact ends.
+    Separation,
+    /// Any other (a corner or a spring switching, the deepest point).
     Other,
 }
 

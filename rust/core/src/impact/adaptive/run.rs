@@ -3,7 +3,7 @@
 //! record. Generic over the body the particle meets ([`AdaptiveSide`]), monomorphised: the
 //! disc on the plate compiles to its own loop.
 
-use super::rules::{singular_cap, singular_factor, verdict, Chatter, Limits, Verdict};
+use super::rules::{singular_cap, singular_factor, verdict, Chatter, Limits, SwitchKind, Verdict};
 use super::side::AdaptiveSide;
 use crate::cancel::Cancel;
 use crate::error::Result;
@@ -176,7 +176,7 @@ impl<'t, S: AdaptiveSide> Run<'t, S> {
         S::settle(self);
         match event {
             Some(ev) => {
-                if S::is_touch(ev) {
+                if S::switch_kind(ev) == SwitchKind::Touch {
                     (self.fresh_touch, self.t_touch) = (true, self.t);
                 }
                 let known = ended.filter(|_| self.mode == mode_step);
@@ -202,7 +202,11 @@ impl<'t, S: AdaptiveSide> Run<'t, S> {
         match self.side.root_exponent() {
             Some(p) if self.side.singular_force(&self.mode) => {
                 let rho = (h_taken > 0.0).then(|| (self.t - self.t_touch) / h_taken);
-                singular_factor(p, rho, event.is_some_and(S::is_separation))
+                singular_factor(
+                    p,
+                    rho,
+                    event.is_some_and(|ev| S::switch_kind(ev) == SwitchKind::Separation),
+                )
             }
             _ => 1.0,
         }

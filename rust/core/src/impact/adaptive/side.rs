@@ -87,15 +87,11 @@ pub(crate) trait AdaptiveSide: Sized {
     /// switches the chatter remedies ignore left out.
     fn first_switch(run: &mut Run<'_, Self>, step: &Self::Step) -> Option<(f64, Self::Event)>;
 
-    /// The kind of switch `ev` is, for the chatter count.
+    /// The kind of switch `ev` is, for the chatter count and the root singularity.
     fn switch_kind(ev: Self::Event) -> SwitchKind;
 
     /// To what fraction of its step switch `ev` is located.
     fn switch_precision(&self, ev: Self::Event) -> f64;
-
-    /// Whether `ev` is a touch (a contact begins) or a separation.
-    fn is_touch(ev: Self::Event) -> bool;
-    fn is_separation(ev: Self::Event) -> bool;
 
     /// After a piece has been taken, before its switch: what the state decides again (a clip
     /// held off for a step, a pair's angular momentum).

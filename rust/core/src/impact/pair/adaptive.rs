@@ -273,20 +273,14 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         match ev {
             Event::ToSlip | Event::ToStick => SwitchKind::Tangential,
             Event::ClipOn | Event::ClipOff => SwitchKind::Clip,
+            Event::Touch => SwitchKind::Touch,
+            Event::Separate => SwitchKind::Separation,
             _ => SwitchKind::Other,
         }
     }
 
     fn switch_precision(&self, ev: Event) -> f64 {
         self.ode.switch_precision(ev)
-    }
-
-    fn is_touch(ev: Event) -> bool {
-        ev == Event::Touch
-    }
-
-    fn is_separation(ev: Event) -> bool {
-        ev == Event::Separate
     }
 
     /// Restores the angular momentum; after a step with the clip held, the end state decides
