@@ -5,31 +5,16 @@
 //! law, elastic or damped; even cases on the adaptive path, odd ones with Gear-5.
 //!
 //! `cargo run --release -p restitution-core --example pair_records -- 2000 > after.txt`
-use restitution_core::{simulate, Cell, Initial, Integrator, NormalLaw, Partner, Scene, Shape};
+#[path = "common/random_polygon.rs"]
+mod random_polygon;
+use random_polygon::random_polygon;
+use restitution_core::{simulate, Cell, Initial, Integrator, NormalLaw, Partner, Scene};
 fn main() {
     let count: usize = std::env::args().nth(1).map_or(200, |s| s.parse().unwrap());
     let mut seeded = restitution_core::Seeded(12345);
     let mut rng = move || seeded.uniform();
-    let sizes = [3usize, 4, 5, 7, 12, 24, 60, 120, 200];
     for case in 0..count {
-        let shape = |r: f64, rng: &mut dyn FnMut() -> f64| {
-            let n = sizes[(rng() * sizes.len() as f64) as usize];
-            if rng() < 0.25 {
-                let aspect = 0.4 + 0.6 * rng();
-                let mut a: Vec<f64> = (0..n.max(5))
-                    .map(|_| rng() * std::f64::consts::TAU)
-                    .collect();
-                a.sort_by(f64::total_cmp);
-                a.dedup_by(|x, y| (*x - *y).abs() < 1e-3);
-                let v: Vec<[f64; 2]> = a
-                    .iter()
-                    .map(|t| [r * t.cos(), r * aspect * t.sin()])
-                    .collect();
-                Shape::convex_polygon(&v).unwrap_or_else(|_| Shape::regular_polygon(r, n).unwrap())
-            } else {
-                Shape::regular_polygon(r, n).unwrap()
-            }
-        };
+        let shape = |r: f64, rng: &mut dyn FnMut() -> f64| random_polygon(r, 0.25, rng);
         let s1 = shape(0.01, &mut rng);
         let s2 = shape(0.01 * (0.5 + 1.5 * rng()), &mut rng);
         let linear = rng() < 0.2;

@@ -7,6 +7,9 @@
 //! integrator (its tolerance, its largest step).
 //!
 //! `cargo run --release -p restitution-core --example plate_records -- 2000 > after.txt`
+#[path = "common/random_polygon.rs"]
+mod random_polygon;
+use random_polygon::random_polygon;
 use restitution_core::{
     simulate, Cell, Initial, Integrator, NormalLaw, Scene, Shape, TangentialHistory,
     TangentialModel,
@@ -14,23 +17,7 @@ use restitution_core::{
 
 /// A regular or a random convex polygon of circumradius about `r`.
 fn polygon(r: f64, rng: &mut dyn FnMut() -> f64) -> Shape {
-    let sizes = [3usize, 4, 5, 7, 12, 24, 60, 120, 200];
-    let n = sizes[(rng() * sizes.len() as f64) as usize];
-    if rng() < 0.3 {
-        let aspect = 0.4 + 0.6 * rng();
-        let mut a: Vec<f64> = (0..n.max(5))
-            .map(|_| rng() * std::f64::consts::TAU)
-            .collect();
-        a.sort_by(f64::total_cmp);
-        a.dedup_by(|x, y| (*x - *y).abs() < 1e-3);
-        let v: Vec<[f64; 2]> = a
-            .iter()
-            .map(|t| [r * t.cos(), r * aspect * t.sin()])
-            .collect();
-        Shape::convex_polygon(&v).unwrap_or_else(|_| Shape::regular_polygon(r, n).unwrap())
-    } else {
-        Shape::regular_polygon(r, n).unwrap()
-    }
+    random_polygon(r, 0.3, rng)
 }
 
 /// A random scene on the adaptive path (or the reference's) with the laws its shape admits.
