@@ -81,11 +81,7 @@ impl TangentialStages {
         h: f64,
         spring: LinearSlip,
     ) -> bool {
-        let rates = self.slip_rates(sg, start, h);
-        let LinearSlip { mu, k_t, c_t } = spring;
-        let (rate_f, rate_v) = (rates.force, rates.velocity);
-        let bound = k_t * (rates.sliding + rate_v * WIDEST_GAP * h) + mu * rate_f + c_t * rate_v;
-        bound < 0.0 && bound.is_finite()
+        slides_on(&self.slip_rates(sg, start, h), h, spring)
     }
 
     /// [`Self::stays_slipping`], and the normal force stays positive through the step, its
@@ -106,8 +102,7 @@ impl TangentialStages {
         spring: LinearSlip,
     ) -> bool {
         let rates = self.slip_rates(sg, start, h);
-        rates.least_force > rates.force * WIDEST_GAP * h
-            && self.stays_slipping(sg, start, h, spring)
+        rates.least_force > rates.force * WIDEST_GAP * h && slides_on(&rates, h, spring)
     }
 
     /// The bounds a slip's stages give (`sg` the sign of its force, `start` the normal force
@@ -136,6 +131,15 @@ impl TangentialStages {
             least_force: at.iter().map(|a| a.1).fold(f64::INFINITY, f64::min),
         }
     }
+}
+
+/// The bound of [`TangentialStages::stays_slipping`] on a slip's stage `rates` in a step of
+/// length `h`: the spring's term k_t s v_t outweighs the rates' bounds.
+fn slides_on(rates: &SlipRates, h: f64, spring: LinearSlip) -> bool {
+    let LinearSlip { mu, k_t, c_t } = spring;
+    let (rate_f, rate_v) = (rates.force, rates.velocity);
+    let bound = k_t * (rates.sliding + rate_v * WIDEST_GAP * h) + mu * rate_f + c_t * rate_v;
+    bound < 0.0 && bound.is_finite()
 }
 
 /// What a slip's stages bound: the rates of the normal force and of the tangential velocity
