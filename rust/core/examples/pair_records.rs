@@ -5,10 +5,10 @@
 //! law, elastic or damped; even cases on the adaptive path, odd ones with Gear-5.
 //!
 //! `cargo run --release -p restitution-core --example pair_records -- 2000 > after.txt`
-#[path = "common/random_polygon.rs"]
-mod random_polygon;
-use random_polygon::random_polygon;
-use restitution_core::{simulate, Cell, Initial, Integrator, NormalLaw, Partner, Scene};
+#[path = "common/records.rs"]
+mod records;
+use records::{random_polygon, record_bits};
+use restitution_core::{simulate, Initial, Integrator, NormalLaw, Partner, Scene};
 fn main() {
     let count: usize = std::env::args().nth(1).map_or(200, |s| s.parse().unwrap());
     let mut seeded = restitution_core::Seeded(12345);
@@ -46,21 +46,10 @@ fn main() {
         .with_partner((rng() - 0.5) * 20.0, rng() * 360.0);
         match simulate(&scene, &init) {
             Ok(rec) => {
-                let cells: Vec<String> = rec
-                    .cells()
-                    .iter()
-                    .map(|c| match c {
-                        Cell::F64(x) => format!("{:x}", x.to_bits()),
-                        Cell::Opt(x) => x.map_or("-".into(), |x| format!("{:x}", x.to_bits())),
-                        Cell::Int(i) => format!("{i}"),
-                        Cell::Bool(b) => format!("{b}"),
-                        Cell::Name(n) => n.to_string(),
-                    })
-                    .collect();
                 println!(
                     "{case} {} {}",
                     if adaptive { "A" } else { "G" },
-                    cells.join(" ")
+                    record_bits(&rec)
                 );
             }
             Err(e) => println!("{case} err {e}"),

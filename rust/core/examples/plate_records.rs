@@ -7,12 +7,11 @@
 //! integrator (its tolerance, its largest step).
 //!
 //! `cargo run --release -p restitution-core --example plate_records -- 2000 > after.txt`
-#[path = "common/random_polygon.rs"]
-mod random_polygon;
-use random_polygon::random_polygon;
+#[path = "common/records.rs"]
+mod records;
+use records::{random_polygon, record_bits};
 use restitution_core::{
-    simulate, Cell, Initial, Integrator, NormalLaw, Scene, Shape, TangentialHistory,
-    TangentialModel,
+    simulate, Initial, Integrator, NormalLaw, Scene, Shape, TangentialHistory, TangentialModel,
 };
 
 /// A regular or a random convex polygon of circumradius about `r`.
@@ -96,18 +95,7 @@ fn main() {
         };
         let init = Initial::from_angle(0.0714, theta, (rng() - 0.5) * 100.0, rng() * 360.0);
         let line = match simulate(&scene, &init) {
-            Ok(rec) => rec
-                .cells()
-                .iter()
-                .map(|c| match c {
-                    Cell::F64(x) => format!("{:x}", x.to_bits()),
-                    Cell::Opt(x) => x.map_or("-".into(), |x| format!("{:x}", x.to_bits())),
-                    Cell::Int(i) => format!("{i}"),
-                    Cell::Bool(b) => format!("{b}"),
-                    Cell::Name(n) => n.to_string(),
-                })
-                .collect::<Vec<_>>()
-                .join(" "),
+            Ok(rec) => record_bits(&rec),
             Err(e) => format!("err {e}"),
         };
         println!("{case} {line}");

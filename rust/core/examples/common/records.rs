@@ -1,7 +1,23 @@
-//! The random polygons of the record examples (`plate_records`, `pair_records`), drawn the same
-//! way for both so that their records cover the same shapes.
+//! What the record examples (`plate_records`, `pair_records`) share: their random polygons,
+//! drawn the same way for both, and a record written as the bits of its values.
 
-use restitution_core::Shape;
+use restitution_core::{Cell, Record, Shape};
+
+/// The record's values in column order, each as its bits (or its name), space-separated, so
+/// that two builds' records compare exactly with `diff`.
+pub fn record_bits(rec: &Record) -> String {
+    rec.cells()
+        .iter()
+        .map(|c| match c {
+            Cell::F64(x) => format!("{:x}", x.to_bits()),
+            Cell::Opt(x) => x.map_or("-".into(), |x| format!("{:x}", x.to_bits())),
+            Cell::Int(i) => format!("{i}"),
+            Cell::Bool(b) => format!("{b}"),
+            Cell::Name(n) => n.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
 
 /// A regular 3- to 200-gon, or with probability `p_convex` a random convex polygon (an ellipse
 /// of aspect 0.4 to 1 through random points), of circumradius about `r`.
