@@ -53,37 +53,46 @@ fn within_tol(scene: &Scene, init: &Initial, r2: f64, tol: f64, what: &str) -> R
     rec
 }
 
-#[test]
-fn a_pair_touching_several_times_is_within_tol_and_err_est_bounds_its_error() {
-    let r2 = 0.014514989414327564;
+/// The pentagon's radius in [`rattling`].
+const RATTLE_R2: f64 = 0.014514989414327564;
+
+/// The damped 120-gon that rattles five times on a pentagon (linear law, mu 0.59), on the
+/// default path, and its initial state.
+fn rattling() -> (Scene, Initial) {
     let scene = Scene {
         shape: Shape::regular_polygon(R, 120).unwrap(),
         mu: 0.5904685113253916,
         normal_law: NormalLaw::Linear { kn: 2e8, cn: 20.0 },
-        partner: Some(Partner::of(Shape::regular_polygon(r2, 5).unwrap())),
+        partner: Some(Partner::of(Shape::regular_polygon(RATTLE_R2, 5).unwrap())),
         ..Scene::default()
     };
     let init = Initial::from_angle(V, 12.828048928846746, 3.335671784132485, 282.63070533490526)
         .with_partner(-4.457862676165113, 53.65728841345651);
-    let rec = within_tol(&scene, &init, r2, 1e-6, "120-gon rattling on a pentagon");
+    (scene, init)
+}
+
+#[test]
+fn a_pair_touching_several_times_is_within_tol_and_err_est_bounds_its_error() {
+    let (scene, init) = rattling();
+    let rec = within_tol(
+        &scene,
+        &init,
+        RATTLE_R2,
+        1e-6,
+        "120-gon rattling on a pentagon",
+    );
     assert!(rec.contacts > 1, "{} contacts", rec.contacts);
 }
 
 /// A scene's own step budget is shared by the reruns: their steps together stay within it.
 #[test]
 fn the_reruns_share_a_scenes_step_budget() {
-    let r2 = 0.014514989414327564;
+    let (rattle, init) = rattling();
     let scene = Scene {
-        shape: Shape::regular_polygon(R, 120).unwrap(),
-        mu: 0.5904685113253916,
-        normal_law: NormalLaw::Linear { kn: 2e8, cn: 20.0 },
         integrator: Integrator::Adaptive,
         dt_factor: 1.0,
-        partner: Some(Partner::of(Shape::regular_polygon(r2, 5).unwrap())),
-        ..Scene::default()
+        ..rattle
     };
-    let init = Initial::from_angle(V, 12.828048928846746, 3.335671784132485, 282.63070533490526)
-        .with_partner(-4.457862676165113, 53.65728841345651);
     let free = simulate(&scene, &init).unwrap();
     for max_steps in [free.steps / 3, free.steps / 2, free.steps] {
         let capped = Scene {
