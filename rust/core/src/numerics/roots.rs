@@ -206,33 +206,78 @@ pub(crate) fn peak(f: impl Fn(f64) -> f64, (a, b): (f64, f64), f_mid: f64, tol: 
 }
 
 /// The x in (0, `hi`] at which an increasing power-like `f` (its value and derivative; f(0) =
-/// 0) reaches `target`, from `at_hi` = f(`hi`) >= `target`. Newton's method on ln f against
-/// ln x: a power of x is solved in one step, so the depths of tiny and huge speeds alike take
-/// a handful of evaluations (bisection to the last bit took about 60); a step that leaves the
-/// bracket of the root bisects instead. Converged to 1e-14 relative.
+/// 0) reaches `target`, from `at_hi` = f(`hi`) >= `target`: [`log_newton_below`] started at
+/// `hi`, except where a step lands on the root exactly (f(x) = target): that x, at the
+/// bracket's end, is taken for a step out of the bracket and bisected away from (up to ~40
+/// evaluations more, to about the same root), as the plate's depth estimate has always done
+/// (its records depend on it to the last bit).
 pub fn log_newton(f: impl Fn(f64) -> (f64, f64), target: f64, hi: f64, at_hi: (f64, f64)) -> f64 {
-    let (mut lo, mut hi) = (0.0, hi);
-    let (mut x, (mut v, mut dv)) = (hi, at_hi);
+    newton_in_logs(f, target, (hi, at_hi), hi, false).unwrap_or(hi)
+}
+
+/// The x in (0, `hi`] at which an increasing power-like `f` (its value and derivative; f(0) =
+/// 0) reaches `target`, started at `x0` in (0, `hi`] (`at_x0` = f(`x0`)); `None` where f(`hi`)
+/// falls short of `target` (evaluated only where the iterates would pass `hi`: a start near
+/// the root never pays it). Newton's method on ln f against ln x: a power of x is solved in
+/// one step, so the depths of tiny and huge speeds alike take a handful of evaluations
+/// (bisection to the last bit took about 60); a step that leaves the bracket of the root
+/// bisects instead. Converged to 1e-14 relative.
+pub fn log_newton_below(
+    f: impl Fn(f64) -> (f64, f64),
+    target: f64,
+    start: (f64, (f64, f64)),
+    hi: f64,
+) -> Option<f64> {
+    newton_in_logs(f, target, start, hi, true)
+}
+
+/// [`log_newton_below`], returning an iterate where f equals `target` if `exact_stops`.
+fn newton_in_logs(
+    f: impl Fn(f64) -> (f64, f64),
+    target: f64,
+    (x0, at_x0): (f64, (f64, f64)),
+    hi: f64,
+    exact_stops: bool,
+) -> Option<f64> {
+    let (mut lo, mut hi_bound) = (0.0, hi);
+    // Whether f(hi) >= target is known: the root then lies in the bracket.
+    let mut bracketed = x0 >= hi;
+    if bracketed && at_x0.0 < target {
+        return None;
+    }
+    let (mut x, (mut v, mut dv)) = (x0, at_x0);
     for _ in 0..200 {
+        if exact_stops && v == target {
+            return Some(x);
+        }
         if v > target {
-            hi = x;
+            (hi_bound, bracketed) = (x, true);
         } else {
             lo = x;
         }
         // d ln f / d ln x = x f' / f; one Newton step in ln x.
         let next = x * ((target / v).ln() / (x * dv / v)).exp();
-        let next = if next > lo && next < hi && next.is_finite() {
+        if !bracketed && !(next < hi_bound) {
+            // Past the largest x allowed, whose value has not been needed so far.
+            let at_hi = f(hi);
+            if at_hi.0 < target {
+                return None;
+            }
+            ((x, (v, dv)), bracketed) = ((hi, at_hi), true);
+            continue;
+        }
+        let next = if next > lo && next < hi_bound && next.is_finite() {
             next
         } else {
-            0.5 * (lo + hi)
+            0.5 * (lo + hi_bound)
         };
-        if (next - x).abs() <= 1e-14 * x || next == lo || next == hi {
-            return next;
+        if (next - x).abs() <= 1e-14 * x || next == lo || next == hi_bound {
+            return Some(next);
         }
         x = next;
         (v, dv) = f(x);
     }
-    x
+    Some(x)
 }
 
 #[cfg(test)]
@@ -321,6 +366,47 @@ mod tests {
         let g = |x: f64| (x - 0.5).max(0.0) - 1e-300;
         let ((near, far), _) = counted(g, 0.0, 1.0, 1e-14);
         assert!(g(near) <= 0.0 && g(far) > 0.0);
+    }
+
+    /// From a start on either side of the root, or at the top: the root of a power law in
+    /// one step, of a power law bent by a factor in a handful; the top evaluated only where the root lies beyond it, and refused there.
+    #[test]
+    fn log_newton_below_finds_the_root_or_refuses_past_the_top() {
+        let counted = |p: f64, bend: f64| {
+            let n = Cell::new(0);
+            let f = move |x: f64| {
+                (
+                    x.powf(p) * (1.0 + bend * x),
+                    x.powf(p - 1.0) * (p + bend * (p + 1.0) * x),
+                )
+            };
+            (n, f)
+        };
+        for (p, bend) in [(2.5, 0.0), (1.5, 0.0), (2.5, 0.3), (3.0, -0.4)] {
+            let (n, f) = counted(p, bend);
+            let g = |x: f64| {
+                n.set(n.get() + 1);
+                f(x)
+            };
+            let root = 0.3;
+            let target = f(root).0;
+            for x0 in [0.05, 0.29, 0.31, 0.9, 1.0] {
+                n.set(0);
+                let got = log_newton_below(&g, target, (x0, f(x0)), 1.0).unwrap();
+                assert!((got - root).abs() <= 1e-14 * root, "p {p}, x0 {x0}: {got}");
+                let most = if bend == 0.0 { 2 } else { 6 };
+                assert!(n.get() <= most, "p {p} bend {bend} x0 {x0}: {}", n.get());
+            }
+            // The root beyond the top: refused, from below the top and at it.
+            for x0 in [0.05, 0.5, 1.0] {
+                let over = f(1.2).0;
+                assert_eq!(
+                    log_newton_below(&g, over, (x0, f(x0)), 1.0),
+                    None,
+                    "x0 {x0}"
+                );
+            }
+        }
     }
 
     #[test]
