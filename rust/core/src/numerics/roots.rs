@@ -257,7 +257,7 @@ fn newton_in_logs(
         }
         // d ln f / d ln x = x f' / f; one Newton step in ln x.
         let next = x * ((target / v).ln() / (x * dv / v)).exp();
-        if !bracketed && !(next < hi_bound) {
+        if !bracketed && (next >= hi_bound || next.is_nan()) {
             // Past the largest x allowed, whose value has not been needed so far.
             let at_hi = f(hi);
             if at_hi.0 < target {

@@ -32,20 +32,67 @@ pub(super) fn touch_height(particle: PairBody<'_>, partner: PairBody<'_>, phi: [
 
 /// The largest height h at which a corner of `a` (vertices relative to its centre, placed at
 /// (0, h)) lies on the top of `b` (centred at the origin): over the corners above b's
-/// upward-facing edges.
+/// upward-facing edges. Those edges (counter-clockwise, an edge going towards -x faces up)
+/// are one chain along which x falls, so each corner finds the one or two edges over it by
+/// bisection: O((n + m) log m) where every corner against every edge cost 14 400 edge tests
+/// for two 120-gons, a twentieth of their adaptive impact. The same edges are tested with
+/// the same arithmetic, so the height is the same to the last bit; where rounding breaks the
+/// chain (an edge near vertical), every edge is tested.
 fn corners_over_top(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     let m = b.len();
+    let edge = |j: usize| (b[j], b[if j + 1 == m { 0 } else { j + 1 }]);
+    let faces_up = |j: usize| {
+        let (p, q) = edge(j);
+        q[0] < p[0]
+    };
+    // The chain starts after an edge that does not face up.
+    let Some(first) =
+        (0..m).find(|&j| faces_up(j) && !faces_up(if j == 0 { m - 1 } else { j - 1 }))
+    else {
+        return corners_over_edges(a, b, 0..m);
+    };
+    let chain: Vec<([f64; 2], [f64; 2])> = (first..m)
+        .chain(0..first)
+        .take_while(|&j| faces_up(j))
+        .map(edge)
+        .collect();
+    if chain.len() != (0..m).filter(|&j| faces_up(j)).count() {
+        return corners_over_edges(a, b, 0..m);
+    }
     let mut best = f64::NEG_INFINITY;
-    for j in 0..m {
+    for v in a {
+        // The edges whose far end is still right of the corner come first; the corner lies
+        // over the next edge, and over the one after where it lies on their shared end.
+        let k0 = chain.partition_point(|(_, q)| q[0] > v[0]);
+        for &(p, q) in chain[k0..].iter().take(2) {
+            if v[0] <= p[0] && v[0] >= q[0] {
+                best = best.max(height_over_edge(*v, p, q));
+            }
+        }
+    }
+    best
+}
+
+/// The height at which corner `v` (relative to its centre) lies on the edge from `p` to `q`.
+#[inline(always)]
+fn height_over_edge(v: [f64; 2], p: [f64; 2], q: [f64; 2]) -> f64 {
+    let y_edge = p[1] + (q[1] - p[1]) * (v[0] - p[0]) / (q[0] - p[0]);
+    y_edge - v[1]
+}
+
+/// The largest height at which a corner of `a` lies on one of the `edges` of `b` that face up
+/// (see [`corners_over_top`]).
+fn corners_over_edges(a: &[[f64; 2]], b: &[[f64; 2]], edges: impl Iterator<Item = usize>) -> f64 {
+    let m = b.len();
+    let mut best = f64::NEG_INFINITY;
+    for j in edges {
         let (p, q) = (b[j], b[(j + 1) % m]);
-        // Counter-clockwise: an edge going towards -x faces up.
         if q[0] >= p[0] {
             continue;
         }
         for v in a {
             if v[0] <= p[0] && v[0] >= q[0] {
-                let y_edge = p[1] + (q[1] - p[1]) * (v[0] - p[0]) / (q[0] - p[0]);
-                best = best.max(y_edge - v[1]);
+                best = best.max(height_over_edge(*v, p, q));
             }
         }
     }
@@ -77,4 +124,55 @@ fn disc_over_top(r: f64, b: &[[f64; 2]]) -> f64 {
         }
     }
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Polygon;
+
+    /// The chain's bisection finds the same height as every corner against every edge, to the
+    /// last bit: regular 3- to 200-gons and random convex polygons (corners of an ellipse), at
+    /// every orientation, each way round, and with corners on the partner's corners' abscissae
+    /// (squares and their copies turned by multiples of a right angle).
+    #[test]
+    fn the_chain_gives_every_edge_tests_height() {
+        let mut seeded = crate::numerics::seeded::Seeded(7);
+        let mut rng = move || seeded.uniform();
+        let polygon = |rng: &mut dyn FnMut() -> f64| {
+            let n = 3 + (rng() * 198.0) as usize;
+            if rng() < 0.5 {
+                return Polygon::regular(0.5 + rng(), n).unwrap();
+            }
+            let mut t: Vec<f64> = (0..n.max(4))
+                .map(|_| rng() * std::f64::consts::TAU)
+                .collect();
+            t.sort_by(f64::total_cmp);
+            t.dedup_by(|x, y| (*x - *y).abs() < 1e-3);
+            let aspect = 0.3 + 0.7 * rng();
+            let v: Vec<[f64; 2]> = t.iter().map(|t| [t.cos(), aspect * t.sin()]).collect();
+            Polygon::convex(&v).unwrap_or_else(|_| Polygon::regular(1.0, n).unwrap())
+        };
+        let check = |a: &[[f64; 2]], b: &[[f64; 2]]| {
+            let all = corners_over_edges(a, b, 0..b.len());
+            assert_eq!(corners_over_top(a, b).to_bits(), all.to_bits());
+            all.is_finite()
+        };
+        let mut finite = 0;
+        for _ in 0..2000 {
+            let (pa, pb) = (polygon(&mut rng), polygon(&mut rng));
+            let a: Vec<[f64; 2]> = placed(&pa, [0.0, 0.0], rng() * 7.0).collect();
+            let b: Vec<[f64; 2]> = placed(&pb, [0.0, 0.0], rng() * 7.0).collect();
+            finite += usize::from(check(&a, &b)) + usize::from(check(&b, &a));
+        }
+        assert!(finite > 3900, "{finite}");
+        let square = Polygon::regular(1.0, 4).unwrap();
+        for k in 0..8 {
+            let phi = k as f64 * std::f64::consts::FRAC_PI_4;
+            let a: Vec<[f64; 2]> = placed(&square, [0.0, 0.0], phi).collect();
+            let b: Vec<[f64; 2]> = placed(&square, [0.0, 0.0], 0.0).collect();
+            check(&a, &b);
+            check(&b, &a);
+        }
+    }
 }
