@@ -32,7 +32,7 @@ use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::f64::consts::PI;
 
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
@@ -100,6 +100,8 @@ pub(super) struct OnPair<'a, G> {
     /// The step just taken stayed in its slip by the stages' bound: its end cannot have turned
     /// the sliding (`end_a_reversed_slip` need not evaluate the law there).
     pub(super) firm_slip: bool,
+    /// The last opening found ([`AdaptiveSide::opening`]) and the state it was found at.
+    opened: Cell<Option<(State, (f64, f64))>>,
 }
 
 /// A Dormand-Prince step of the pair's ODE, the law's evaluation at its end (its last stage,
@@ -193,6 +195,7 @@ fn begin<'a, 't, G: PairGeometry>(
         k_end: None,
         start: None,
         firm_slip: false,
+        opened: Cell::default(),
     };
     let h = lim.h_max.min(lim.h_singular);
     Run::new(side, (s, mode, k1), h, lim, trace)
@@ -214,8 +217,15 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         let mut at_end = Eval::default();
         let (tangential, depths) = (&mut out.tangential, &mut out.depths);
         tangential.begin();
+        // In flight the law's derivative reads no contact; only the last stage's evaluation
+        // (the step's end, where the touch is looked for) measures the gap.
+        let flying = G::CORNERS && mode.apart && matches!(mode.tan, Tan::None | Tan::Free);
         out.dp.take(s, k1, h, |stage, y, k| {
-            let e = ode.eval(&mode, y, k);
+            let e = if flying && stage < 6 {
+                ode.eval_in_flight(&mode, y, k)
+            } else {
+                ode.eval(&mode, y, k)
+            };
             depths[stage - 1] = e.depth;
             match mode.tan {
                 Tan::Stick => tangential.stick(ode.to_slip_value(&e)),
@@ -250,7 +260,11 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     }
 
     fn opening(&self, s: &State) -> (f64, f64) {
-        self.ode.opening(s)
+        if G::CORNERS {
+            self.kept_opening(s)
+        } else {
+            self.ode.opening(s)
+        }
     }
 
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered
@@ -424,6 +438,20 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 }
 
 impl<G: PairGeometry> OnPair<'_, G> {
+    /// [`AdaptiveSide::opening`] of bodies with corners, kept for the state it was found at:
+    /// a rejected step's retry starts from the same state, and the opening costs a clip.
+    #[inline(never)]
+    fn kept_opening(&self, s: &State) -> (f64, f64) {
+        if let Some((at, opening)) = self.opened.get() {
+            if at == *s {
+                return opening;
+            }
+        }
+        let opening = self.ode.opening(s);
+        self.opened.set(Some((*s, opening)));
+        opening
+    }
+
     /// Whether the accepted `step` of mode `m` stays stuck or stays slipping throughout, by
     /// the bound the plate's stages give ([`TangentialStages`]): the stick -> slip function
     /// |F_trial| - mu F_n at the stages' states (the contact frame's turn and both spins are
