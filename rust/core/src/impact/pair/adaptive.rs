@@ -259,12 +259,16 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         !m.clipped && !m.apart && self.root_exponent().is_some()
     }
 
+    /// Bodies with corners: read from the law's evaluation where the step starts, where it
+    /// is kept (its frame is the held overlap's, which the force acts in; found again, the
+    /// clip cost two 12-gons a tenth of their impact).
     fn opening(&self, s: &State) -> (f64, f64) {
-        if G::CORNERS {
-            self.kept_opening(s)
-        } else {
-            self.ode.opening(s)
+        if !G::CORNERS {
+            return self.ode.opening(s);
         }
+        self.start
+            .and_then(|(_, e)| self.ode.opening_of(&e, s))
+            .unwrap_or_else(|| self.kept_opening(s))
     }
 
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered

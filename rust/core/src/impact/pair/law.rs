@@ -74,6 +74,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
                 }
                 (e.n, e.depth, e.area) = (fr.n, fr.depth, fr.area);
                 e.lever_t = fr.lever_t;
+                e.lever_rate = Some(fr.lever_rate_area);
             }
             None => {
                 // Apart: the depth is minus the gap (round bodies: at no cost), the normal the
@@ -169,6 +170,15 @@ impl<G: PairGeometry> PairOde<'_, G> {
         let lever = fr.lever_rate_area;
         let g_n = fr.n[0] * s[GX] + fr.n[1] * s[GY];
         (fr.depth, g_n + lever[0] * s[W1] + lever[1] * s[W2])
+    }
+
+    /// [`Self::opening`] at state `s` from the law's evaluation `e` at its positions (its
+    /// velocities may differ), where that found the contact's frame: the frame the force acts
+    /// in (the held overlap), read rather than found again.
+    pub(super) fn opening_of(&self, e: &Eval, s: &State) -> Option<(f64, f64)> {
+        let lever = e.lever_rate?;
+        let g_n = e.n[0] * s[GX] + e.n[1] * s[GY];
+        Some((e.depth, g_n + lever[0] * s[W1] + lever[1] * s[W2]))
     }
 
     /// Whether a step that ends at state `end` has crossed the parting of a force with a root
