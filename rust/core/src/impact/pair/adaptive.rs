@@ -217,14 +217,17 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         let mut at_end = Eval::default();
         let (tangential, depths) = (&mut out.tangential, &mut out.depths);
         tangential.begin();
-        // In flight the law's derivative reads no contact; only the last stage's evaluation
-        // (the step's end, where the touch is looked for) measures the gap.
+        // The inner stages' depths are read for their signs alone (the stage filters'), and
+        // in flight the law's derivative reads no contact: only the last stage's evaluation
+        // (the step's end, where its switches are looked for) measures the gap.
         let flying = G::CORNERS && mode.apart && matches!(mode.tan, Tan::None | Tan::Free);
         out.dp.take(s, k1, h, |stage, y, k| {
-            let e = if flying && stage < 6 {
+            let e = if stage == 6 {
+                ode.eval(&mode, y, k)
+            } else if flying {
                 ode.eval_in_flight(&mode, y, k)
             } else {
-                ode.eval(&mode, y, k)
+                ode.eval_stage(&mode, y, k)
             };
             depths[stage - 1] = e.depth;
             match mode.tan {
