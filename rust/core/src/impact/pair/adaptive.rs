@@ -32,7 +32,7 @@ use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
 use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
 use std::f64::consts::PI;
 
 /// Integrates one pair impact on the adaptive path (validated pair and initial state, the
@@ -100,8 +100,6 @@ pub(super) struct OnPair<'a, G> {
     /// The step just taken stayed in its slip by the stages' bound: its end cannot have turned
     /// the sliding (`end_a_reversed_slip` need not evaluate the law there).
     pub(super) firm_slip: bool,
-    /// The last opening found ([`AdaptiveSide::opening`]) and the state it was found at.
-    opened: Cell<Option<(State, (f64, f64))>>,
 }
 
 /// A Dormand-Prince step of the pair's ODE, the law's evaluation at its end (its last stage,
@@ -195,7 +193,6 @@ fn begin<'a, 't, G: PairGeometry>(
         k_end: None,
         start: None,
         firm_slip: false,
-        opened: Cell::default(),
     };
     let h = lim.h_max.min(lim.h_singular);
     Run::new(side, (s, mode, k1), h, lim, trace)
@@ -271,7 +268,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         }
         self.start
             .and_then(|(_, e)| self.ode.opening_of(&e, s))
-            .unwrap_or_else(|| self.kept_opening(s))
+            .unwrap_or_else(|| self.ode.opening(s))
     }
 
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered
@@ -445,20 +442,6 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 }
 
 impl<G: PairGeometry> OnPair<'_, G> {
-    /// [`AdaptiveSide::opening`] of bodies with corners, kept for the state it was found at:
-    /// a rejected step's retry starts from the same state, and the opening costs a clip.
-    #[inline(never)]
-    fn kept_opening(&self, s: &State) -> (f64, f64) {
-        if let Some((at, opening)) = self.opened.get() {
-            if at == *s {
-                return opening;
-            }
-        }
-        let opening = self.ode.opening(s);
-        self.opened.set(Some((*s, opening)));
-        opening
-    }
-
     /// Whether the accepted `step` of mode `m` stays stuck or stays slipping throughout, by
     /// the bound the plate's stages give ([`TangentialStages`]): the stick -> slip function
     /// |F_trial| - mu F_n at the stages' states (the contact frame's turn and both spins are
