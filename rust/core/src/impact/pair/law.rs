@@ -112,8 +112,8 @@ impl<G: PairGeometry> PairOde<'_, G> {
     /// [`Self::eval`] in flight (mode apart, no tangential law: no force acts) where the
     /// evaluation's contact is not read: the same derivative, bit for bit, without the
     /// geometry (in flight the frame only sets the normal and depth, and the forces it would
-    /// give are off). The depth is left unmeasured (-inf: apart). Two 120-gons spent a tenth
-    /// of their impact measuring the gap at the stages of their flights' steps.
+    /// give are off). The depth is left unmeasured (-inf: apart): each stage of a flight's
+    /// step measured the gap, which places and scans every corner of both bodies.
     pub(super) fn eval_in_flight(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
         debug_assert!(m.apart && matches!(m.tan, Tan::None | Tan::Free));
         let d = s[X].hypot(s[Y]);
