@@ -154,20 +154,25 @@ fn patch_of<R: Ring + ?Sized>(
             }
         }
         Extras::Push => {
-            let crossing = |v: &ClipVertex| {
-                let (i, j) = v.crossing().expect("a crossing");
-                Crossing {
-                    at: v.p,
-                    particle: edge_normal(pa, i),
-                    partner: edge_normal(pb, j),
-                }
-            };
             let caps = caps.expect("the caps of the push");
-            (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
+            let crossings = [crossing_of(&c0, pa, pb), crossing_of(&c1, pa, pb)];
+            (p.potential, p.push) = potential_push(at, p.n, crossings, caps);
         }
         Extras::Nothing => {}
     }
     true
+}
+
+/// The clip's vertex `v`, a crossing of the boundaries, with the outward normals of the
+/// particle's and the partner's edges it lies on (what the potential's push reads).
+#[inline(always)]
+fn crossing_of<R: Ring + ?Sized>(v: &ClipVertex, pa: &R, pb: &R) -> Crossing {
+    let (i, j) = v.crossing().expect("a crossing");
+    Crossing {
+        at: v.p,
+        particle: edge_normal(pa, i),
+        partner: edge_normal(pb, j),
+    }
 }
 
 /// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
@@ -272,6 +277,7 @@ const OVERLAP_MARGIN: f64 = 1e-10;
 /// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
 /// crossing of the two lines (interpolated along the first's edge, from its end nearer the
 /// other line).
+#[inline(always)]
 fn meet<R: Ring + ?Sized>(l1: EdgeLine, l2: EdgeLine, pa: &R, pb: &R) -> [f64; 2] {
     let line = |l: EdgeLine| match l {
         EdgeLine::A(i) => ends(pa, i),
