@@ -394,10 +394,10 @@ fn shared_edge_normal<R: Ring + ?Sized>(
 /// `k0` and `k1`, each part with the first moment about crossing `k0`. The part whose
 /// boundary leaves `k0` along an edge of the particle is the particle's.
 fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
-    let len = out.len();
+    debug_assert!(k0 < k1, "the crossings in the clip's order");
     let o = out[k0].p;
-    let forward = polygon_cap((k0..=k1).map(|k| out[k].p), o);
-    let back = polygon_cap((k1..=k0 + len).map(|k| out[wrap(k, len)].p), o);
+    let forward = polygon_cap(out[k0..=k1].iter().map(|v| v.p), o);
+    let back = polygon_cap(out[k1..].iter().chain(&out[..=k0]).map(|v| v.p), o);
     let particle_first = matches!(out[k0].after, crate::geometry::convex_clip::EdgeLine::A(_));
     if particle_first {
         [forward, back]
