@@ -272,12 +272,16 @@ impl<'a> ShapePair<'a> {
         // at the piece's end. Not to the chord's side: just past a touch, at a chord of
         // 2e-16 m across a corner, the chord's normal lay across the push and turned it into
         // the partner (twin triangles: friction's sign reversed at the touch, e_T 0.03 off).
-        let push = [p.springs.push[0], p.springs.push[1]];
-        let sum = [p.springs.sum[0], p.springs.sum[1]];
-        let side = if sum == [0.0; 2] { p.n } else { sum };
-        let norm = push[0].hypot(push[1]).copysign(dot(push, side));
-        let n = if self.springs && norm != 0.0 {
-            [push[0] / norm, push[1] / norm]
+        let n = if self.springs {
+            let push = [p.springs.push[0], p.springs.push[1]];
+            let sum = [p.springs.sum[0], p.springs.sum[1]];
+            let side = if sum == [0.0; 2] { p.n } else { sum };
+            let norm = push[0].hypot(push[1]).copysign(dot(push, side));
+            if norm != 0.0 {
+                [push[0] / norm, push[1] / norm]
+            } else {
+                p.n
+            }
         } else {
             p.n
         };

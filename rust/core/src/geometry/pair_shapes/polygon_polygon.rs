@@ -154,20 +154,25 @@ fn patch_of<R: Ring + ?Sized>(
             }
         }
         Extras::Push => {
-            let crossing = |v: &ClipVertex| {
-                let (i, j) = v.crossing().expect("a crossing");
-                Crossing {
-                    at: v.p,
-                    particle: edge_normal(pa, i),
-                    partner: edge_normal(pb, j),
-                }
-            };
             let caps = caps.expect("the caps of the push");
-            (p.potential, p.push) = potential_push(at, p.n, [crossing(&c0), crossing(&c1)], caps);
+            let crossings = [crossing_of(&c0, pa, pb), crossing_of(&c1, pa, pb)];
+            (p.potential, p.push) = potential_push(at, p.n, crossings, caps);
         }
         Extras::Nothing => {}
     }
     true
+}
+
+/// The clip's vertex `v`, a crossing of the boundaries, with the outward normals of the
+/// particle's and the partner's edges it lies on (what the potential's push reads).
+#[inline(always)]
+fn crossing_of<R: Ring + ?Sized>(v: &ClipVertex, pa: &R, pb: &R) -> Crossing {
+    let (i, j) = v.crossing().expect("a crossing");
+    Crossing {
+        at: v.p,
+        particle: edge_normal(pa, i),
+        partner: edge_normal(pb, j),
+    }
 }
 
 /// The overlap of the placed polygons at `at` to hold through a piece of the adaptive path
@@ -272,6 +277,7 @@ const OVERLAP_MARGIN: f64 = 1e-10;
 /// Where two edge lines meet: a polygon's corner between its consecutive edges, else the
 /// crossing of the two lines (interpolated along the first's edge, from its end nearer the
 /// other line).
+#[inline(always)]
 fn meet<R: Ring + ?Sized>(l1: EdgeLine, l2: EdgeLine, pa: &R, pb: &R) -> [f64; 2] {
     let line = |l: EdgeLine| match l {
         EdgeLine::A(i) => ends(pa, i),
@@ -388,10 +394,10 @@ fn shared_edge_normal<R: Ring + ?Sized>(
 /// `k0` and `k1`, each part with the first moment about crossing `k0`. The part whose
 /// boundary leaves `k0` along an edge of the particle is the particle's.
 fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
-    let len = out.len();
+    debug_assert!(k0 < k1, "the crossings in the clip's order");
     let o = out[k0].p;
-    let forward = polygon_cap((k0..=k1).map(|k| out[k].p), o);
-    let back = polygon_cap((k1..=k0 + len).map(|k| out[wrap(k, len)].p), o);
+    let forward = polygon_cap(out[k0..=k1].iter().map(|v| v.p), o);
+    let back = polygon_cap(out[k1..].iter().chain(&out[..=k0]).map(|v| v.p), o);
     let particle_first = matches!(out[k0].after, crate::geometry::convex_clip::EdgeLine::A(_));
     if particle_first {
         [forward, back]

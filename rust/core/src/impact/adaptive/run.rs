@@ -90,8 +90,13 @@ impl<'t, S: AdaptiveSide> Run<'t, S> {
         let (side, lim) = (&self.side, &self.lim);
         let mut h = self.h.min(lim.h_max);
         if side.singular_force(&self.mode) {
-            let cap = singular_cap(self.fresh_touch, side.opening(&self.s), lim.h_singular);
-            h = h.min(cap);
+            // Just after a touch the cap does not read the opening (a pair's costs a clip).
+            let opening = if self.fresh_touch {
+                (0.0, 0.0)
+            } else {
+                side.opening(&self.s)
+            };
+            h = h.min(singular_cap(self.fresh_touch, opening, lim.h_singular));
         }
         h.min(side.step_cap(&self.mode, &self.s))
     }

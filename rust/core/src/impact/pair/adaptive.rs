@@ -214,8 +214,18 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         let mut at_end = Eval::default();
         let (tangential, depths) = (&mut out.tangential, &mut out.depths);
         tangential.begin();
+        // The inner stages' depths are read for their signs alone (the stage filters'), and
+        // in flight the law's derivative reads no contact: only the last stage's evaluation
+        // (the step's end, where its switches are looked for) measures the gap.
+        let flying = G::CORNERS && mode.apart && matches!(mode.tan, Tan::None | Tan::Free);
         out.dp.take(s, k1, h, |stage, y, k| {
-            let e = ode.eval(&mode, y, k);
+            let e = if stage == 6 {
+                ode.eval(&mode, y, k)
+            } else if flying {
+                ode.eval_in_flight(&mode, y, k)
+            } else {
+                ode.eval_stage(&mode, y, k)
+            };
             depths[stage - 1] = e.depth;
             match mode.tan {
                 Tan::Stick => tangential.stick(ode.to_slip_value(&e)),
@@ -249,8 +259,16 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         !m.clipped && !m.apart && self.root_exponent().is_some()
     }
 
+    /// Bodies with corners: read from the law's evaluation where the step starts, where it
+    /// is kept (its frame is the held overlap's, which the force acts in; found again, the
+    /// clip cost two 12-gons a tenth of their impact).
     fn opening(&self, s: &State) -> (f64, f64) {
-        self.ode.opening(s)
+        if !G::CORNERS {
+            return self.ode.opening(s);
+        }
+        self.start
+            .and_then(|(_, e)| self.ode.opening_of(&e, s))
+            .unwrap_or_else(|| self.ode.opening(s))
     }
 
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered

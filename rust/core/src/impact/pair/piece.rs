@@ -68,6 +68,9 @@ pub(super) struct Eval {
     pub(super) el: [f64; 4],
     pub(super) damp: [f64; 4],
     pub(super) lever_t: [f64; 2],
+    /// Where the contact's frame was found: the levers of the area's rate on the spins
+    /// (`PairFrame::lever_rate_area`), from which the opening is read.
+    pub(super) lever_rate: Option<[f64; 2]>,
 }
 
 impl Eval {
