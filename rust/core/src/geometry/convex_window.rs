@@ -29,8 +29,8 @@
 //! clip goes on through every edge of B from the same first clip, as the full one.
 
 use super::convex_clip::{
-    along_q, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, wrap, ClipVertex,
-    Ring,
+    along_q, clip_by_edge, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, wrap,
+    ClipVertex, Ring,
 };
 use super::polygon::Polygon;
 use crate::numerics::trig::sin_cos;
@@ -263,18 +263,33 @@ fn clip_in_window(
     if out.len() < 3 {
         return false;
     }
-    // Where B's edges cannot be ruled out, every edge after the first, as the full clip
-    // goes on from the same first clip.
+    // B's edge after j0 first, as the full clip: it cuts off what the first clip holds
+    // beyond B's next corner (its crossing far along j0's line, and A's corners there), so the
+    // edges that may cut are told from what it leaves: every later polygon's vertices lie on
+    // segments between its vertices, as between the first clip's.
     let m = b.count();
     let next = &mut scratch.next;
+    let j1 = wrap(j0 + 1, m);
+    if clip_by_edge(out, next, edge(b, j1 as u32), j1 as u32, None) {
+        std::mem::swap(out, next);
+        if out.len() < 3 {
+            out.clear();
+            return false;
+        }
+    }
+    // Where B's edges cannot be ruled out, every edge after those two, as the full clip goes
+    // on from the same polygon.
     match edges_cutting(b, out, j0, &mut scratch.hints.towards) {
         // The edges that may cut: each tested vertex by vertex (a bounding circle would pass
         // few of them by).
-        Some(run) => clip_through(a, b, in_clip_order(run, j0, m), (out, next), false),
+        Some(run) => {
+            let rest = in_clip_order(run, j0, m).filter(|&j| j as usize != j1);
+            clip_through(a, b, rest, (out, next), false)
+        }
         None => {
             #[cfg(test)]
             FALLBACKS.with(|f| f.set(f.get() + 1));
-            let every = (1..m).map(move |k| wrap(j0 + k, m) as u32);
+            let every = (2..m).map(move |k| wrap(j0 + k, m) as u32);
             clip_through(a, b, every, (out, next), true)
         }
     }
@@ -405,6 +420,17 @@ fn edges_cutting(
     let offset = |j: usize| wrap(j + m - j0, m) as isize;
     let signed = |k: isize| if k > half { k - m as isize } else { k };
     let (mut lo, mut hi) = (0isize, 0isize);
+    // The edge `off` edges after j0 (|off| <= m).
+    let at_offset = |off: isize| {
+        let i = j0 as isize + off;
+        (if i < 0 {
+            i + m as isize
+        } else if i >= m as isize {
+            i - m as isize
+        } else {
+            i
+        }) as usize
+    };
     for v in out {
         let d = [v.p[0] - b.centre()[0], v.p[1] - b.centre()[1]];
         let w = b.in_body(d);
@@ -419,6 +445,22 @@ fn edges_cutting(
             return None;
         }
         let along = |j: usize| lines[j][0] * w[0] + lines[j][1] * w[1];
+        // An edge of the run so far surely v's (beyond half the margin) and the edges just
+        // past both its ends not: v's edges, one arc, lie within the run (no search).
+        let sure = limit + 0.5 * b.round_off(d);
+        let in_run = |j: usize| {
+            let at = signed(offset(j));
+            lo <= at && at <= hi
+        };
+        // The hint may come from another polygon (the scratch is the thread's).
+        let h = if *hint < m { *hint } else { 0 };
+        let h_prev = wrap(h + m - 1, m);
+        if ((in_run(h) && along(h) > sure) || (in_run(h_prev) && along(h_prev) > sure))
+            && along(at_offset(lo - 1)) <= limit
+            && along(at_offset(hi + 1)) <= limit
+        {
+            continue;
+        }
         let k = poly.lowest_vertex_near(*hint, -w[0], -w[1]);
         *hint = k;
         // Forward from the edge leaving corner k, back from the edge arriving at it.
@@ -427,6 +469,16 @@ fn edges_cutting(
             let mut j = if forward { k } else { wrap(k + m - 1, m) };
             while along(j) > limit {
                 let at = signed(offset(j));
+                if lo <= at && at <= hi {
+                    // Already in the run: v's edges go on past it only through the edge just
+                    // beyond it (they are contiguous), so the walk goes on from there.
+                    j = if forward {
+                        wrap(j0 + hi as usize + 1, m)
+                    } else {
+                        wrap((j0 + m) - (1 - lo) as usize, m)
+                    };
+                    continue;
+                }
                 (lo, hi) = (lo.min(at), hi.max(at));
                 len += 1;
                 if 2 * len >= m || hi - lo >= half {
