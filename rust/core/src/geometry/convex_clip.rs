@@ -241,14 +241,29 @@ pub(crate) fn along_q(v: [f64; 2], q: [f64; 2]) -> f64 {
 /// nearer q's direction.
 pub(crate) fn facing_edge_at<R: Ring + ?Sized>(b: &R, k: usize, q: [f64; 2]) -> usize {
     let m = b.count();
+    let around = [
+        b.corner(wrap(k + m - 1, m)),
+        b.corner(k),
+        b.corner(wrap(k + 1, m)),
+    ];
+    facing_edge_between(m, k, around, q)
+}
+
+/// [`facing_edge_at`] from the corners before B's corner `k`, at it and after it, placed (`m`
+/// corners in all).
+pub(crate) fn facing_edge_between(
+    m: usize,
+    k: usize,
+    [c_prev, c_k, c_next]: [[f64; 2]; 3],
+    q: [f64; 2],
+) -> usize {
     let prev = wrap(k + m - 1, m);
     // The outward normal (e_y, -e_x) against q, and the edge's squared length.
-    let parts = |j: usize| {
-        let [b0, b1] = edge(b, j as u32);
+    let parts = |[b0, b1]: [[f64; 2]; 2]| {
         let e = sub(b1, b0);
         (e[1] * q[0] - e[0] * q[1], e[0] * e[0] + e[1] * e[1])
     };
-    let ((a_prev, l_prev), (a_k, l_k)) = (parts(prev), parts(k));
+    let ((a_prev, l_prev), (a_k, l_k)) = (parts([c_prev, c_k]), parts([c_k, c_next]));
     // Both facing q (at the farthest corner, almost always): the quotients per unit length in
     // the order of a^2 times the other edge's l, without the square roots and divisions (a
     // twentieth of the window's time), unless within round-off of a tie (a relative 1e-12,
@@ -361,41 +376,55 @@ pub(crate) fn first_clip_run<R: Ring + ?Sized>(
     a: &R,
     bj: [[f64; 2]; 2],
     j: u32,
-    mut prev: usize,
+    prev: usize,
     run: impl Iterator<Item = usize>,
     out: &mut Vec<ClipVertex>,
 ) {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
-    let mut a_prev = a.corner(prev);
-    let mut s_prev = side(a_prev);
+    let a_prev = a.corner(prev);
+    let mut last = (prev, a_prev, side(a_prev));
     for i in run {
         let ai = a.corner(i);
-        let s = side(ai);
-        if (s_prev >= 0.0) != (s >= 0.0) {
-            // The edge prev -> i (A's edge `prev`) crosses B's line j.
-            let t = s_prev / (s_prev - s);
-            let p = [
-                a_prev[0] + t * (ai[0] - a_prev[0]),
-                a_prev[1] + t * (ai[1] - a_prev[1]),
-            ];
-            let (before, after) = if s_prev >= 0.0 {
-                (EdgeLine::A(prev as u32), EdgeLine::B(j))
-            } else {
-                (EdgeLine::B(j), EdgeLine::A(prev as u32))
-            };
-            out.push(ClipVertex { p, before, after });
-        }
-        if s >= 0.0 {
-            out.push(ClipVertex {
-                p: ai,
-                before: EdgeLine::A(prev as u32),
-                after: EdgeLine::A(i as u32),
-            });
-        }
-        prev = i;
-        a_prev = ai;
-        s_prev = s;
+        let this = (i, ai, side(ai));
+        push_first_clip(last, this, j, out);
+        last = this;
+    }
+}
+
+/// A corner of A as the first clip reads it: its index, its placed position, and its side of
+/// B's line (>= 0 inside).
+pub(crate) type Sided = (usize, [f64; 2], f64);
+
+/// The first clip's vertices for A's corner `this` after corner `prev` onto `out`: where A's
+/// edge between them crosses B's line `j`, the crossing; then the corner if inside.
+#[inline(always)]
+pub(crate) fn push_first_clip(
+    (prev, a_prev, s_prev): Sided,
+    (i, ai, s): Sided,
+    j: u32,
+    out: &mut Vec<ClipVertex>,
+) {
+    if (s_prev >= 0.0) != (s >= 0.0) {
+        // The edge prev -> i (A's edge `prev`) crosses B's line j.
+        let t = s_prev / (s_prev - s);
+        let p = [
+            a_prev[0] + t * (ai[0] - a_prev[0]),
+            a_prev[1] + t * (ai[1] - a_prev[1]),
+        ];
+        let (before, after) = if s_prev >= 0.0 {
+            (EdgeLine::A(prev as u32), EdgeLine::B(j))
+        } else {
+            (EdgeLine::B(j), EdgeLine::A(prev as u32))
+        };
+        out.push(ClipVertex { p, before, after });
+    }
+    if s >= 0.0 {
+        out.push(ClipVertex {
+            p: ai,
+            before: EdgeLine::A(prev as u32),
+            after: EdgeLine::A(i as u32),
+        });
     }
 }
 

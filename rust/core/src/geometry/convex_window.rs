@@ -29,8 +29,8 @@
 //! clip goes on through every edge of B from the same first clip, as the full one.
 
 use super::convex_clip::{
-    along_q, clip_by_edge, clip_convex, clip_through, edge, facing_edge_at, first_clip_run, wrap,
-    ClipVertex, Ring,
+    along_q, clip_by_edge, clip_convex, clip_through, edge, facing_edge_between, push_first_clip,
+    wrap, ClipVertex, Ring,
 };
 use super::polygon::Polygon;
 use crate::numerics::trig::sin_cos;
@@ -249,15 +249,16 @@ fn clip_in_window(
     }
     // B's corner farthest along q (the lowest index of equals, as the full scan keeps the
     // first), and the facing edge there.
-    let kb = climb(
-        b,
-        b.start_along(q, scratch.hints.facing),
-        |v| along_q(v, q),
-        true,
-    );
+    let start = b.start_along(q, scratch.hints.facing);
+    let (kb, _, [c_prev, c_kb, c_next]) = climb(b, start, |v| along_q(v, q), true);
     scratch.hints.facing = kb;
-    let j0 = facing_edge_at(b, kb, q);
-    if !first_clip_window(a, edge(b, j0 as u32), j0 as u32, out, &mut scratch.hints) {
+    let j0 = facing_edge_between(b.count(), kb, [c_prev, c_kb, c_next], q);
+    let bj0 = if j0 == kb {
+        [c_kb, c_next]
+    } else {
+        [c_prev, c_kb]
+    };
+    if !first_clip_window(a, bj0, j0 as u32, out, &mut scratch.hints) {
         return fallback(a, b, q, out, &mut scratch.next);
     }
     if out.len() < 3 {
@@ -296,38 +297,51 @@ fn clip_in_window(
 }
 
 /// From corner `k`, along the boundary of `ring` while `f` of the corner grows: for a convex
-/// polygon and a linear `f`, a corner where `f` is largest. With `lowest`, of two neighbours
-/// where `f` is equal the lower index (as a scan from corner 0 keeps the first).
+/// polygon and a linear `f`, a corner where `f` is largest, with that value and the corners
+/// before it, at it and after it, placed. With `lowest`, of two neighbours where `f` is equal
+/// the lower index (as a scan from corner 0 keeps the first).
 fn climb<R: Ring + ?Sized>(
     ring: &R,
     mut k: usize,
     f: impl Fn([f64; 2]) -> f64,
     lowest: bool,
-) -> usize {
+) -> (usize, f64, [[f64; 2]; 3]) {
     let n = ring.count();
-    let mut fk = f(ring.corner(k));
+    let around = |k: usize| {
+        let (prev, next) = (
+            if k == 0 { n - 1 } else { k - 1 },
+            if k + 1 == n { 0 } else { k + 1 },
+        );
+        [ring.corner(prev), ring.corner(k), ring.corner(next)]
+    };
+    let mut ck = ring.corner(k);
+    let mut fk = f(ck);
     loop {
         let next = if k + 1 == n { 0 } else { k + 1 };
-        let f_next = f(ring.corner(next));
+        let c_next = ring.corner(next);
+        let f_next = f(c_next);
         if f_next > fk {
-            (k, fk) = (next, f_next);
+            (k, fk, ck) = (next, f_next, c_next);
             continue;
         }
         let prev = if k == 0 { n - 1 } else { k - 1 };
-        let f_prev = f(ring.corner(prev));
+        let c_prev = ring.corner(prev);
+        let f_prev = f(c_prev);
         if f_prev > fk {
-            (k, fk) = (prev, f_prev);
+            (k, fk, ck) = (prev, f_prev, c_prev);
             continue;
         }
-        if lowest {
-            if f_next == fk && next < k {
-                k = next;
+        if lowest && ((f_next == fk && next < k) || (f_prev == fk && prev < k)) {
+            let mut low = k;
+            if f_next == fk && next < low {
+                low = next;
             }
-            if f_prev == fk && prev < k {
-                k = prev;
+            if f_prev == fk && prev < low {
+                low = prev;
             }
+            return (low, fk, around(low));
         }
-        return k;
+        return (k, fk, [c_prev, ck, c_next]);
     }
 }
 
@@ -346,7 +360,8 @@ fn first_clip_window(
     let e = [bj[1][0] - bj[0][0], bj[1][1] - bj[0][1]];
     // The full clip's side test, bit for bit.
     let side = |p: [f64; 2]| e[0] * (p[1] - bj[0][1]) - e[1] * (p[0] - bj[0][0]);
-    let deepest = climb(a, a.start_along([-e[1], e[0]], hints.deepest), side, false);
+    let start = a.start_along([-e[1], e[0]], hints.deepest);
+    let (deepest, s_deepest, _) = climb(a, start, side, false);
     hints.deepest = deepest;
     // Beyond the round-off of a side test, a corner next to the run cannot hide another
     // corner inside behind it (the side along a convex boundary has one maximum, one minimum).
@@ -358,39 +373,53 @@ fn first_clip_window(
             + bj[0][1].abs());
     let tiny = ROUND_OFF * scale;
     out.clear();
-    let s_deepest = side(a.corner(deepest));
     if s_deepest < 0.0 {
         return s_deepest < -tiny;
     }
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
     let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
-    let (mut first, mut last, mut len) = (deepest, deepest, 1);
-    while side(a.corner(prev(first))) >= 0.0 {
-        first = prev(first);
-        len += 1;
-        if len == n {
+    // Back from the deepest corner to the corner before the run.
+    let mut first = deepest;
+    let before = loop {
+        let i = prev(first);
+        let c = a.corner(i);
+        let s = side(c);
+        if s < 0.0 {
+            break (i, c, s);
+        }
+        first = i;
+        if first == deepest {
             return false;
         }
-    }
-    while side(a.corner(next(last))) >= 0.0 {
-        last = next(last);
-        len += 1;
-        if len == n {
-            return false;
-        }
-    }
-    if side(a.corner(prev(first))) > -tiny || side(a.corner(next(last))) > -tiny {
+    };
+    if before.2 > -tiny {
         return false;
     }
-    // The full clip emits in the order of the corner it reads (from 0): the run from its
-    // first corner through the corner after its last, split where it passes corner 0.
-    let end = next(last);
-    if first <= end {
-        first_clip_run(a, bj, j, prev(first), first..=end, out);
-    } else {
-        first_clip_run(a, bj, j, n - 1, 0..=end, out);
-        first_clip_run(a, bj, j, first - 1, first..n, out);
+    // On from it through the run and the corner after it, each placed once: the first clip's
+    // vertices in the walk's order, then turned to the full clip's, which reads the corners
+    // from 0 (the run split where it passes corner 0).
+    let (mut last, mut i, mut inside, mut at_zero) = (before, first, 0, 0);
+    loop {
+        if i == 0 {
+            at_zero = out.len();
+        }
+        let c = a.corner(i);
+        let this = (i, c, side(c));
+        push_first_clip(last, this, j, out);
+        last = this;
+        if this.2 < 0.0 {
+            break;
+        }
+        inside += 1;
+        if inside == n {
+            return false;
+        }
+        i = next(i);
     }
+    if last.2 > -tiny {
+        return false;
+    }
+    out.rotate_left(at_zero);
     true
 }
 
