@@ -128,6 +128,7 @@ pub(crate) fn edge<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
 /// `false` when every vertex lies inside (nothing to do: `next` untouched). With `bound`,
 /// first the polygon's bounding circle against the edge's line.
+#[inline(always)]
 pub(crate) fn clip_by_edge(
     out: &[ClipVertex],
     next: &mut Vec<ClipVertex>,
