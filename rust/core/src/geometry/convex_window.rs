@@ -249,8 +249,8 @@ fn clip_in_window(
     }
     // B's corner farthest along q (the lowest index of equals, as the full scan keeps the
     // first), and the facing edge there.
-    let start = b.start_along(q, scratch.hints.facing);
-    let (kb, _, [c_prev, c_kb, c_next]) = climb(b, start, |v| along_q(v, q), true);
+    let hint = (scratch.hints.facing, q);
+    let (kb, _, [c_prev, c_kb, c_next]) = climb_from(b, hint, |v| along_q(v, q), true);
     scratch.hints.facing = kb;
     let j0 = facing_edge_between(b.count(), kb, [c_prev, c_kb, c_next], q);
     let bj0 = if j0 == kb {
@@ -296,16 +296,36 @@ fn clip_in_window(
     }
 }
 
+/// [`climb`] from the corner `hint` (the last evaluation's: the bodies turn little between
+/// evaluations, and the climb places only the corners it passes) where that takes at most
+/// [`FEW_MOVES`] moves, else from the body-frame search's corner along the world direction
+/// `d` (`PlacedPolygon::start_along`, warm-started from the same hint).
+fn climb_from(
+    ring: &PlacedPolygon,
+    (hint, d): (usize, [f64; 2]),
+    f: impl Fn([f64; 2]) -> f64,
+    lowest: bool,
+) -> (usize, f64, [[f64; 2]; 3]) {
+    let near = if hint < ring.count() { hint } else { 0 };
+    climb(ring, near, &f, lowest, FEW_MOVES)
+        .unwrap_or_else(|| climb(ring, ring.start_along(d, near), &f, lowest, usize::MAX).unwrap())
+}
+
+/// The moves a climb from the last evaluation's corner may take before the body-frame search
+/// is asked for a start (it costs about three moves).
+const FEW_MOVES: usize = 3;
+
 /// From corner `k`, along the boundary of `ring` while `f` of the corner grows: for a convex
 /// polygon and a linear `f`, a corner where `f` is largest, with that value and the corners
-/// before it, at it and after it, placed. With `lowest`, of two neighbours where `f` is equal
-/// the lower index (as a scan from corner 0 keeps the first).
+/// before it, at it and after it, placed; `None` after `max_moves` moves. With `lowest`, of
+/// two neighbours where `f` is equal the lower index (as a scan from corner 0 keeps the first).
 fn climb<R: Ring + ?Sized>(
     ring: &R,
     mut k: usize,
     f: impl Fn([f64; 2]) -> f64,
     lowest: bool,
-) -> (usize, f64, [[f64; 2]; 3]) {
+    max_moves: usize,
+) -> Option<(usize, f64, [[f64; 2]; 3])> {
     let n = ring.count();
     let around = |k: usize| {
         let (prev, next) = (
@@ -316,7 +336,12 @@ fn climb<R: Ring + ?Sized>(
     };
     let mut ck = ring.corner(k);
     let mut fk = f(ck);
+    let mut moves = 0;
     loop {
+        if moves > max_moves {
+            return None;
+        }
+        moves += 1;
         let next = if k + 1 == n { 0 } else { k + 1 };
         let c_next = ring.corner(next);
         let f_next = f(c_next);
@@ -339,9 +364,9 @@ fn climb<R: Ring + ?Sized>(
             if f_prev == fk && prev < low {
                 low = prev;
             }
-            return (low, fk, around(low));
+            return Some((low, fk, around(low)));
         }
-        return (k, fk, [c_prev, ck, c_next]);
+        return Some((k, fk, [c_prev, ck, c_next]));
     }
 }
 
@@ -360,8 +385,7 @@ fn first_clip_window(
     let e = [bj[1][0] - bj[0][0], bj[1][1] - bj[0][1]];
     // The full clip's side test, bit for bit.
     let side = |p: [f64; 2]| e[0] * (p[1] - bj[0][1]) - e[1] * (p[0] - bj[0][0]);
-    let start = a.start_along([-e[1], e[0]], hints.deepest);
-    let (deepest, s_deepest, _) = climb(a, start, side, false);
+    let (deepest, s_deepest, _) = climb_from(a, (hints.deepest, [-e[1], e[0]]), side, false);
     hints.deepest = deepest;
     // Beyond the round-off of a side test, a corner next to the run cannot hide another
     // corner inside behind it (the side along a convex boundary has one maximum, one minimum).
