@@ -324,6 +324,8 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
     bounded: bool,
 ) -> bool {
     let mut bound = bounded.then(|| Bound::of(out));
+    // The end of the last edge placed, the start of the next where the edges run on.
+    let mut end: Option<(u32, [f64; 2])> = None;
     for j in edges {
         // An edge whose line is far from the clip changes nothing: told from its body-frame
         // line where the ring knows it, without placing its corners.
@@ -333,7 +335,20 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
             }
         }
         let placed_bound = bound.filter(|_| !R::KNOWS_LINES);
-        if clip_by_edge(out, next, edge(b, j), j, placed_bound) {
+        let bj = if R::KNOWS_LINES {
+            // Placed as read (a slice's corners are read in place).
+            let after = wrap(j as usize + 1, b.count()) as u32;
+            let start = match end {
+                Some((k, p)) if k == j => p,
+                _ => b.corner(j as usize),
+            };
+            let bj = [start, b.corner(after as usize)];
+            end = Some((after, bj[1]));
+            bj
+        } else {
+            edge(b, j)
+        };
+        if clip_by_edge(out, next, bj, j, placed_bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();

@@ -34,8 +34,8 @@
 //! polygon, as the full one.
 
 use super::convex_clip::{
-    along_q, clip_by_edge, clip_convex, clip_through, edge, facing_edge_between, push_first_clip,
-    wrap, ClipVertex, Ring,
+    along_q, clip_by_edge, clip_convex, clip_through, facing_edge_between, push_first_clip, wrap,
+    ClipVertex, Ring,
 };
 use super::polygon::Polygon;
 use crate::numerics::trig::sin_cos;
@@ -276,7 +276,13 @@ fn clip_in_window(
     let m = b.count();
     let next = &mut scratch.next;
     let j1 = wrap(j0 + 1, m);
-    if clip_by_edge(out, next, edge(b, j1 as u32), j1 as u32, None) {
+    // Its ends: the climb's corners after the facing edge's start.
+    let bj1 = if j0 == kb {
+        [c_next, b.corner(wrap(j1 + 1, m))]
+    } else {
+        [c_kb, c_next]
+    };
+    if clip_by_edge(out, next, bj1, j1 as u32, None) {
         std::mem::swap(out, next);
         if out.len() < 3 {
             out.clear();

@@ -2,6 +2,7 @@
 //! of edges and discs against the placed corners.
 
 use super::*;
+use crate::geometry::convex_clip::edge;
 use crate::numerics::seeded::uniform as rng;
 
 /// A random convex polygon: corners at sorted random angles on an ellipse.
