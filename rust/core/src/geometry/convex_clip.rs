@@ -128,6 +128,7 @@ pub(crate) fn edge<R: Ring + ?Sized>(v: &R, k: u32) -> [[f64; 2]; 2] {
 /// Clips `out` (a convex polygon) by the inner half-plane of B's edge `j` into `next`;
 /// `false` when every vertex lies inside (nothing to do: `next` untouched). With `bound`,
 /// first the polygon's bounding circle against the edge's line.
+#[inline(always)]
 pub(crate) fn clip_by_edge(
     out: &[ClipVertex],
     next: &mut Vec<ClipVertex>,
@@ -241,14 +242,29 @@ pub(crate) fn along_q(v: [f64; 2], q: [f64; 2]) -> f64 {
 /// nearer q's direction.
 pub(crate) fn facing_edge_at<R: Ring + ?Sized>(b: &R, k: usize, q: [f64; 2]) -> usize {
     let m = b.count();
+    let around = [
+        b.corner(wrap(k + m - 1, m)),
+        b.corner(k),
+        b.corner(wrap(k + 1, m)),
+    ];
+    facing_edge_between(m, k, around, q)
+}
+
+/// [`facing_edge_at`] from the corners before B's corner `k`, at it and after it, placed (`m`
+/// corners in all).
+pub(crate) fn facing_edge_between(
+    m: usize,
+    k: usize,
+    [c_prev, c_k, c_next]: [[f64; 2]; 3],
+    q: [f64; 2],
+) -> usize {
     let prev = wrap(k + m - 1, m);
     // The outward normal (e_y, -e_x) against q, and the edge's squared length.
-    let parts = |j: usize| {
-        let [b0, b1] = edge(b, j as u32);
+    let parts = |[b0, b1]: [[f64; 2]; 2]| {
         let e = sub(b1, b0);
         (e[1] * q[0] - e[0] * q[1], e[0] * e[0] + e[1] * e[1])
     };
-    let ((a_prev, l_prev), (a_k, l_k)) = (parts(prev), parts(k));
+    let ((a_prev, l_prev), (a_k, l_k)) = (parts([c_prev, c_k]), parts([c_k, c_next]));
     // Both facing q (at the farthest corner, almost always): the quotients per unit length in
     // the order of a^2 times the other edge's l, without the square roots and divisions (a
     // twentieth of the window's time), unless within round-off of a tie (a relative 1e-12,
@@ -308,6 +324,8 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
     bounded: bool,
 ) -> bool {
     let mut bound = bounded.then(|| Bound::of(out));
+    // The end of the last edge placed, the start of the next where the edges run on.
+    let mut end: Option<(u32, [f64; 2])> = None;
     for j in edges {
         // An edge whose line is far from the clip changes nothing: told from its body-frame
         // line where the ring knows it, without placing its corners.
@@ -317,7 +335,20 @@ pub(crate) fn clip_through<R: Ring + ?Sized>(
             }
         }
         let placed_bound = bound.filter(|_| !R::KNOWS_LINES);
-        if clip_by_edge(out, next, edge(b, j), j, placed_bound) {
+        let bj = if R::KNOWS_LINES {
+            // Placed as read (a slice's corners are read in place).
+            let after = wrap(j as usize + 1, b.count()) as u32;
+            let start = match end {
+                Some((k, p)) if k == j => p,
+                _ => b.corner(j as usize),
+            };
+            let bj = [start, b.corner(after as usize)];
+            end = Some((after, bj[1]));
+            bj
+        } else {
+            edge(b, j)
+        };
+        if clip_by_edge(out, next, bj, j, placed_bound) {
             std::mem::swap(out, next);
             if out.len() < 3 {
                 out.clear();
@@ -361,41 +392,55 @@ pub(crate) fn first_clip_run<R: Ring + ?Sized>(
     a: &R,
     bj: [[f64; 2]; 2],
     j: u32,
-    mut prev: usize,
+    prev: usize,
     run: impl Iterator<Item = usize>,
     out: &mut Vec<ClipVertex>,
 ) {
     let e = sub(bj[1], bj[0]);
     let side = |p: [f64; 2]| cross(e, sub(p, bj[0]));
-    let mut a_prev = a.corner(prev);
-    let mut s_prev = side(a_prev);
+    let a_prev = a.corner(prev);
+    let mut last = (prev, a_prev, side(a_prev));
     for i in run {
         let ai = a.corner(i);
-        let s = side(ai);
-        if (s_prev >= 0.0) != (s >= 0.0) {
-            // The edge prev -> i (A's edge `prev`) crosses B's line j.
-            let t = s_prev / (s_prev - s);
-            let p = [
-                a_prev[0] + t * (ai[0] - a_prev[0]),
-                a_prev[1] + t * (ai[1] - a_prev[1]),
-            ];
-            let (before, after) = if s_prev >= 0.0 {
-                (EdgeLine::A(prev as u32), EdgeLine::B(j))
-            } else {
-                (EdgeLine::B(j), EdgeLine::A(prev as u32))
-            };
-            out.push(ClipVertex { p, before, after });
-        }
-        if s >= 0.0 {
-            out.push(ClipVertex {
-                p: ai,
-                before: EdgeLine::A(prev as u32),
-                after: EdgeLine::A(i as u32),
-            });
-        }
-        prev = i;
-        a_prev = ai;
-        s_prev = s;
+        let this = (i, ai, side(ai));
+        push_first_clip(last, this, j, out);
+        last = this;
+    }
+}
+
+/// A corner of A as the first clip reads it: its index, its placed position, and its side of
+/// B's line (>= 0 inside).
+pub(crate) type Sided = (usize, [f64; 2], f64);
+
+/// The first clip's vertices for A's corner `this` after corner `prev` onto `out`: where A's
+/// edge between them crosses B's line `j`, the crossing; then the corner if inside.
+#[inline(always)]
+pub(crate) fn push_first_clip(
+    (prev, a_prev, s_prev): Sided,
+    (i, ai, s): Sided,
+    j: u32,
+    out: &mut Vec<ClipVertex>,
+) {
+    if (s_prev >= 0.0) != (s >= 0.0) {
+        // The edge prev -> i (A's edge `prev`) crosses B's line j.
+        let t = s_prev / (s_prev - s);
+        let p = [
+            a_prev[0] + t * (ai[0] - a_prev[0]),
+            a_prev[1] + t * (ai[1] - a_prev[1]),
+        ];
+        let (before, after) = if s_prev >= 0.0 {
+            (EdgeLine::A(prev as u32), EdgeLine::B(j))
+        } else {
+            (EdgeLine::B(j), EdgeLine::A(prev as u32))
+        };
+        out.push(ClipVertex { p, before, after });
+    }
+    if s >= 0.0 {
+        out.push(ClipVertex {
+            p: ai,
+            before: EdgeLine::A(prev as u32),
+            after: EdgeLine::A(i as u32),
+        });
     }
 }
 

@@ -2,6 +2,7 @@
 //! of edges and discs against the placed corners.
 
 use super::*;
+use crate::geometry::convex_clip::edge;
 use crate::numerics::seeded::uniform as rng;
 
 /// A random convex polygon: corners at sorted random angles on an ellipse.
@@ -191,5 +192,64 @@ fn the_window_gives_the_full_clip_bit_for_bit() {
     assert!(
         windowed * 10 >= shallow_many * 9,
         "{windowed} of {shallow_many}"
+    );
+}
+
+/// The windowed clip along slow motions, as an impact's evaluations meet it: each pair turned
+/// and moved a small part of a corner's angle per evaluation, from grazing through deep and
+/// out again, so that the searches start from the last evaluation's corners (and the run of
+/// B's edges grows from its last vertices' arcs), against the full clip bit for bit; and most
+/// of these shallow contacts between many-cornered bodies stay in the window.
+#[test]
+fn the_window_follows_slow_motion_bit_for_bit() {
+    let mut seed = 23u64;
+    let (mut full, mut next, mut win) = (Vec::new(), Vec::new(), Vec::new());
+    let mut scratch = WindowScratch::default();
+    let (mut overlapping, mut fell_back) = (0, 0);
+    for case in 0..120 {
+        let s = &mut seed;
+        let n = [12, 40, 120, 300][case % 4];
+        let m = [120, 300, 17, 120][(case / 4) % 4];
+        let r1 = 10f64.powf(-1.0 + 2.0 * rng(s));
+        let pa = if case % 3 == 0 {
+            random_convex(r1, n, s)
+        } else {
+            Polygon::regular(r1, n).unwrap()
+        };
+        let pb = if case % 5 == 0 {
+            random_convex(1.0, m, s)
+        } else {
+            Polygon::regular(1.0, m).unwrap()
+        };
+        let reach = pa.circumradius() + pb.circumradius();
+        let (ang0, phi1, phi2) = (rng(s) * 6.3, rng(s) * 6.3, rng(s) * 6.3);
+        let (spin1, spin2, swing) = (rng(s) - 0.5, rng(s) - 0.5, 0.3 * (rng(s) - 0.5));
+        let steps = 400;
+        for k in 0..steps {
+            // Along the line of centres from apart to 3 % of the reach deep and back.
+            let t = k as f64 / steps as f64;
+            let depth = 0.03 * (std::f64::consts::PI * t).sin() - 0.002;
+            let ang = ang0 + swing * t;
+            let d = reach * (1.0 - depth);
+            let q = [d * ang.cos(), d * ang.sin()];
+            let a = PlacedPolygon::new(&pa, q, phi1 + 0.05 * spin1 * t);
+            let b = PlacedPolygon::new(&pb, [0.0, 0.0], phi2 + 0.05 * spin2 * t);
+            let (va, vb) = (placed(&a), placed(&b));
+            let theirs = clip_convex(&va[..], &vb[..], q, &mut full, &mut next);
+            let before = FALLBACKS.with(|f| f.get());
+            let ours = clip_in_window(&a, &b, q, &mut win, &mut scratch);
+            assert_eq!(ours, theirs, "case {case} step {k}: n {n} m {m} q {q:?}");
+            if theirs {
+                overlapping += 1;
+                assert_eq!(win, full, "case {case} step {k}: n {n} m {m} q {q:?}");
+                fell_back += usize::from(FALLBACKS.with(|f| f.get()) != before);
+            }
+        }
+    }
+    eprintln!("{overlapping} overlapping, {fell_back} fell back");
+    assert!(overlapping > 20000, "{overlapping}");
+    assert!(
+        fell_back * 10 <= overlapping,
+        "{fell_back} of {overlapping}"
     );
 }
