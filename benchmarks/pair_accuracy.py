@@ -17,6 +17,7 @@ first compares the reference with itself at a fifth of its largest step.
     python benchmarks/pair_accuracy.py --seeds 8        # 120 pairs from each of seeds 1 ... 8
     python benchmarks/pair_accuracy.py --pairs 120 --tols 1e-4 1e-6 1e-8 --discs --check-reference
     python benchmarks/pair_accuracy.py --linear-grid --tols 1e-4 1e-6 1e-8
+    python benchmarks/pair_accuracy.py --two-discs --seeds 4    # two discs (docs/model.md 17.5)
 """
 
 from __future__ import annotations
@@ -51,10 +52,14 @@ def body(rng: np.random.Generator, r: float, discs: bool):
     return rs.RegularPolygon(r=r, n=int(rng.choice(SIDES)), phi0_deg=phi)
 
 
-def draw(rng: np.random.Generator, discs: bool) -> dict:
+def draw(rng: np.random.Generator, discs: bool, two_discs: bool = False) -> dict:
     a = body(rng, R, discs)
     b = body(rng, R * float(np.exp(rng.uniform(math.log(0.5), math.log(2.0)))), discs)
-    if isinstance(a, rs.Disc) and isinstance(b, rs.Disc):
+    if two_discs:
+        # Two discs, equal in three draws of ten (the rest of the draw as for polygons).
+        equal = rng.random() < 0.3
+        a, b = rs.Disc(r=R), rs.Disc(r=R if equal else radius(b))
+    elif isinstance(a, rs.Disc) and isinstance(b, rs.Disc):
         b = rs.RegularPolygon(r=R, n=6, phi0_deg=float(rng.uniform(0.0, 360.0)))
     law = "area" if rng.random() < 0.6 else "linear"
     damped = rng.random() < 0.5
@@ -153,6 +158,8 @@ def main() -> None:
     ap.add_argument("--tols", type=float, nargs="*", default=[1e-4, 1e-5, 1e-6, 1e-7, 1e-8])
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--discs", action="store_true", help="a disc for one body in ten")
+    ap.add_argument("--two-discs", action="store_true",
+                    help="two discs instead of bodies with corners (sizes, laws, spins as above)")
     ap.add_argument("--linear-grid", action="store_true",
                     help="docs/model.md 17.8's 960 linear-law impacts instead of random pairs")
     ap.add_argument("--check-reference", action="store_true",
@@ -163,7 +170,7 @@ def main() -> None:
     if args.quick:
         args.pairs, args.tols = 24, [1e-4, 1e-6]
     draws = linear_grid() if args.linear_grid else [
-        draw(rng, args.discs)
+        draw(rng, args.discs, args.two_discs)
         for rng in (np.random.default_rng(args.seed + k) for k in range(args.seeds))
         for _ in range(args.pairs)
     ]
