@@ -161,6 +161,13 @@ pub trait PairGeometry: Copy {
     fn held_springs_value(&self, _q: &[f64; 4], _held: &HeldSprings) -> f64 {
         f64::NEG_INFINITY
     }
+    /// Where the frame follows the centres' distance `d` alone and its overlap is a lens:
+    /// the rates per unit of `d` of the chord and of the tangential force's lever on the
+    /// particle's spin, (dl/dd, dL_1/dd), at the frame's `chord`, `area` and lever `arm1`
+    /// there (the partner's lever is d - L_1); `None` elsewhere.
+    fn lens_rates(&self, _d: f64, _chord: f64, _area: f64, _arm1: f64) -> Option<(f64, f64)> {
+        None
+    }
 }
 
 /// What a round pair's overlap is, measured along the line of centres.
@@ -261,6 +268,11 @@ macro_rules! round_pair_geometry {
             fn area_potential(&self, delta: f64) -> Option<(f64, f64)> {
                 <$pair>::area_potential(self, delta)
             }
+
+            #[inline(always)]
+            fn lens_rates(&self, d: f64, chord: f64, area: f64, arm1: f64) -> Option<(f64, f64)> {
+                <$pair>::lens_rates(self, d, chord, area, arm1)
+            }
         }
     };
 }
@@ -280,6 +292,26 @@ impl DiscPair {
             let (moment, area) = disc_segment_moment(self.r1, 0.5 * delta);
             (4.0 * moment, 2.0 * area)
         })
+    }
+
+    /// The lens's rates at centre distance `d` (see [`PairGeometry::lens_rates`]), from its
+    /// `chord` l, `area` A and centroid's distance `arm1` from centre 1. The chord lies at
+    /// x_1 = r1 - h1 from centre 1 and x_2 = r2 - h2 from centre 2 (`cap_depths`), with
+    /// dx_1/dd = x_2 / d and dx_2/dd = x_1 / d; its half l / 2 = sqrt(r1^2 - x_1^2), so
+    /// dl/dd = -4 x_1 x_2 / (l d) (on the plate, r2 -> inf, the disc's -4 (r - depth) / l).
+    /// Cap i loses area at l dx_i/dd as its chord recedes, so dA_2/dd = -l x_1 / d, and the
+    /// centroid arm1 = d A_2 / A moves at A_2 / A - l (x_1 - arm1) / A; equal discs' centroid
+    /// lies on the chord, halfway (1 / 2).
+    #[inline(always)]
+    pub fn lens_rates(&self, d: f64, chord: f64, area: f64, arm1: f64) -> Option<(f64, f64)> {
+        let delta = self.r1 + self.r2 - d;
+        let (h1, h2) = cap_depths(self.r1, self.r2, d, delta);
+        let (x1, x2) = (self.r1 - h1, self.r2 - h2);
+        let chord_rate = -4.0 * x1 * x2 / (chord * d);
+        if self.r1 == self.r2 {
+            return Some((chord_rate, 0.5));
+        }
+        Some((chord_rate, (arm1 / d) - chord * (x1 - arm1) / area))
     }
 
     /// The lens at centre distance `d`; `None` when apart.
@@ -338,6 +370,11 @@ impl SpherePair {
     /// `None`: spheres' laws are Hertz's (its potential in closed form where the depth is
     /// estimated) and the linear one.
     pub fn area_potential(&self, _delta: f64) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// `None`: the Hertz law's rates are differenced.
+    pub fn lens_rates(&self, _d: f64, _c: f64, _a: f64, _arm1: f64) -> Option<(f64, f64)> {
         None
     }
 

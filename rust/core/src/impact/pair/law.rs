@@ -88,7 +88,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
                     (e.f_el, e.f_d) = (normal.f_el, normal.f_d);
                     (e.el, e.damp) = (normal.el, normal.damp);
                 }
-                (e.n, e.depth, e.area) = (fr.n, fr.depth, fr.area);
+                (e.n, e.depth, e.area, e.chord) = (fr.n, fr.depth, fr.area, fr.chord);
                 e.lever_t = fr.lever_t;
                 e.lever_rate = Some(fr.lever_rate_area);
             }

@@ -62,6 +62,8 @@ pub(super) struct Eval {
     pub(super) v_t: f64,
     pub(super) depth: f64,
     pub(super) area: f64,
+    /// The overlap's chord (`PairFrame::chord`; 0 apart).
+    pub(super) chord: f64,
     pub(super) n: [f64; 2],
     /// The elastic and damping parts on the lanes (clipped by the mode) and the tangential
     /// force's lever (`PairFrame`).
