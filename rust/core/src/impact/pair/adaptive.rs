@@ -253,8 +253,8 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         root_exponent(&self.ode.pair.law.scene.normal_law)
     }
 
-    /// In contact and unclipped under the area and Hertz laws (the linear law's force is
-    /// smooth at touch and separation).
+    /// In contact and unclipped under the area and Hertz laws (the linear law's force has no
+    /// root singularity at touch and separation; its kink at the parting is `ends_apart`'s).
     fn singular_force(&self, m: &Mode) -> bool {
         !m.clipped && !m.apart && self.root_exponent().is_some()
     }
