@@ -229,13 +229,13 @@ fn body_count(poly: &Polygon) -> usize {
     poly.vertices().len()
 }
 
-/// A circumscribed circle outside the line of the other body's edges facing its centre
-/// (`circle_outside_a_line`) has every corner outside that line by the separation's margin,
+/// A body's least corner outside the line of the other body's edges facing its centre
+/// (`corners_outside_a_line`) has every corner outside that line by the separation's margin,
 /// and the clip finds the two apart: random convex polygons of 33 to 1024 corners, elongated
-/// up to 20 to 1, placed from crossed to apart. Without the circumradius in its bound (the
-/// centre alone outside the line) the test fails on the placements whose circle crosses it.
+/// up to 20 to 1, placed from crossed to apart. Read at another corner than the least (the
+/// centre's nearest, say), the test fails on the placements whose corners cross the line.
 #[test]
-fn a_circle_outside_a_line_has_every_corner_outside_it() {
+fn a_least_corner_outside_a_line_has_every_corner_outside_it() {
     let mut seeded = crate::numerics::seeded::Seeded(23);
     let mut rng = move || seeded.uniform();
     let (mut out, mut next) = (Vec::new(), Vec::new());
@@ -270,7 +270,7 @@ fn a_circle_outside_a_line_has_every_corner_outside_it() {
         let overlap =
             crate::geometry::convex_clip::clip_convex(&va[..], &vb[..], at, &mut out, &mut next);
         apart += usize::from(!overlap);
-        if !super::circle_outside_a_line(&a, &b) {
+        if !super::corners_outside_a_line(&va, &a, &b) {
             continue;
         }
         certified += 1;
