@@ -19,7 +19,9 @@ use super::pair::{HeldSprings, PairFrame, PairGeometry, Springs};
 use super::{Polygon, Shape};
 use crate::numerics::trig::sin_cos;
 use disc_polygon::{crossing_edges, disc_polygon, held_crossings_value, DiscRole};
-use gap::{distance_to_polygon, inside, polygons_overlap, separated, vertices_distance};
+use gap::{
+    distance_to_polygon, inside, polygons_overlap, separated, separated_gap, vertices_distance,
+};
 use polygon_polygon::{
     held_overlap, held_overlap_value, held_patch, placed_patch, polygon_patch, Extras,
 };
@@ -310,6 +312,21 @@ impl<'a> ShapePair<'a> {
         }
     }
 
+    /// [`separated_gap`] of two polygons with few corners ([`few_corners`]) at lanes `q`;
+    /// `None` for other bodies. Many corners are not tried: their windowed clip tells bodies
+    /// apart in fewer instructions than the line's test over every corner (two 120-gons ran
+    /// 1.9 % more with it, two 12-gons, whose clip places and clips every corner, 1.4 % fewer).
+    fn separated_gap(&self, q: &[f64; 4]) -> Option<f64> {
+        let ab = self.polygons().filter(|&ab| few_corners(ab))?;
+        PLACED.with(|cell| {
+            let (pa, pb) = &mut *cell.borrow_mut();
+            let (body_a, body_b) = placed_pair(ab, q);
+            place_into(pa, ab.0, [q[0], q[1]], q[2]);
+            place_into(pb, ab.1, [0.0, 0.0], q[3]);
+            separated_gap((pa, &body_a), (pb, &body_b))
+        })
+    }
+
     /// The distance between the bodies at lanes `q` (m; 0 when they touch or overlap).
     pub fn gap(&self, q: &[f64; 4]) -> f64 {
         let at = [q[0], q[1]];
@@ -471,6 +488,11 @@ impl PairGeometry for ShapePair<'_> {
         }
     }
     fn signed_depth(&self, q: &[f64; 4]) -> f64 {
+        // Two polygons a line separates: no patch to look for (the flights' gaps, the
+        // parting's samples past it, where the clip cost as much as the gap).
+        if let Some(apart) = self.separated_gap(q) {
+            return -apart;
+        }
         match self.patch(q) {
             Some(p) => p.depth,
             None => -self.gap(q),

@@ -362,3 +362,46 @@ fn a_disc_holds_its_crossings_until_one_passes_a_corner() {
     };
     assert!(!springs.holds_springs());
 }
+
+/// `signed_depth` spares the clip only where a separating line proves the bodies apart
+/// (`separated_gap`): its value is the patch's depth, else minus the gap, bit for bit, from
+/// deep overlaps (crossed corners) through grazing to far apart, for both laws. Without the
+/// proof's condition the overlapping placements would be read as apart (minus a corner's
+/// distance, not the depth).
+#[test]
+fn a_separated_depth_is_the_patch_or_the_gap() {
+    let mut seeded = crate::numerics::seeded::Seeded(17);
+    let mut rng = move || seeded.uniform();
+    let (mut overlapping, mut separated_seen) = (0, 0);
+    for case in 0..4000 {
+        let (n, m) = (
+            [3usize, 4, 5, 7, 12][case % 5],
+            [3usize, 5, 6, 12][case % 4],
+        );
+        let (a, b) = (ngon(0.01 * (0.3 + rng()), n), ngon(0.01, m));
+        let mut pair = ShapePair::new(&a, &b).unwrap();
+        pair.springs = case % 3 == 0;
+        let ang = rng() * std::f64::consts::TAU;
+        let d = pair.reach() * (0.3 + 0.9 * rng());
+        let q = [d * ang.cos(), d * ang.sin(), rng() * 7.0, rng() * 7.0];
+        let expected = match pair.patch(&q) {
+            Some(p) => {
+                overlapping += 1;
+                p.depth
+            }
+            None => -pair.gap(&q),
+        };
+        separated_seen += usize::from(pair.separated_gap(&q).is_some());
+        let got = pair.signed_depth(&q);
+        assert_eq!(
+            got.to_bits(),
+            expected.to_bits(),
+            "case {case}: {got} vs {expected}"
+        );
+    }
+    // Both branches taken often (the test would not see a wrong skip otherwise).
+    assert!(
+        overlapping > 400 && separated_seen > 400,
+        "{overlapping} {separated_seen}"
+    );
+}

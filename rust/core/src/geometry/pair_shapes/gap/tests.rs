@@ -228,3 +228,69 @@ fn a_separating_line_is_one_the_clip_agrees_with() {
 fn body_count(poly: &Polygon) -> usize {
     poly.vertices().len()
 }
+
+/// A body's least corner outside the line of the other body's edges facing its centre
+/// (`corners_outside_a_line`) has every corner outside that line by the separation's margin,
+/// and the clip finds the two apart: random convex polygons of 33 to 1024 corners, elongated
+/// up to 20 to 1, placed from crossed to apart. Read at another corner than the least (the
+/// centre's nearest, say), the test fails on the placements whose corners cross the line.
+#[test]
+fn a_least_corner_outside_a_line_has_every_corner_outside_it() {
+    let mut seeded = crate::numerics::seeded::Seeded(23);
+    let mut rng = move || seeded.uniform();
+    let (mut out, mut next) = (Vec::new(), Vec::new());
+    let (mut certified, mut apart) = (0, 0);
+    for case in 0..3000 {
+        let (n, m) = (
+            [33usize, 48, 120, 1024][case % 4],
+            [3usize, 5, 12, 120, 200][case % 5],
+        );
+        let shape = |rng: &mut dyn FnMut() -> f64, n: usize| {
+            let aspect = 0.05 + 0.95 * rng();
+            let v: Vec<[f64; 2]> = (0..n)
+                .map(|k| {
+                    let t = std::f64::consts::TAU * k as f64 / n as f64;
+                    [t.cos(), aspect * t.sin()]
+                })
+                .collect();
+            Polygon::convex(&v).unwrap()
+        };
+        let (pa, pb) = (shape(&mut rng, n), shape(&mut rng, m));
+        let ang = rng() * std::f64::consts::TAU;
+        let d = (pa.circumradius() + pb.circumradius()) * (0.2 + 1.0 * rng());
+        let at = [d * ang.cos(), d * ang.sin()];
+        let a = PlacedPolygon::new(&pa, at, rng() * 7.0);
+        let b = PlacedPolygon::new(&pb, [0.0, 0.0], rng() * 7.0);
+        let corners = |body: &PlacedPolygon| -> Vec<[f64; 2]> {
+            (0..body.polygon().vertices().len())
+                .map(|i| crate::geometry::convex_clip::Ring::corner(body, i))
+                .collect()
+        };
+        let (va, vb) = (corners(&a), corners(&b));
+        let overlap =
+            crate::geometry::convex_clip::clip_convex(&va[..], &vb[..], at, &mut out, &mut next);
+        apart += usize::from(!overlap);
+        if !super::corners_outside_a_line(&va, &a, &b) {
+            continue;
+        }
+        certified += 1;
+        assert!(
+            !overlap,
+            "case {case}: the circle is outside, yet the clip overlaps"
+        );
+        let [nx, ny, h] = super::facing_edge_line(&b, a.centre());
+        let nw = b.in_world([nx, ny]);
+        let c = b.centre();
+        let scale = pb.circumradius() + c[0].abs() + c[1].abs();
+        for p in &va {
+            let beyond = nw[0] * (p[0] - c[0]) + nw[1] * (p[1] - c[1]) - h;
+            let margin = super::SEPARATION * (scale + p[0].abs() + p[1].abs());
+            assert!(
+                beyond > margin,
+                "case {case}: a corner {beyond} within {margin}"
+            );
+        }
+    }
+    eprintln!("{certified} certified of {apart} apart");
+    assert!(certified * 2 >= apart, "{certified} of {apart}");
+}
