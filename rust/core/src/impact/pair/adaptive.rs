@@ -30,7 +30,6 @@ use crate::impact::flight::{self, Approach, Jump};
 use crate::impact::record::{separation_normal, Bodies, Ending, Record, StopReason, Trace};
 use crate::impact::side::poll_stride;
 use crate::integrate::dopri::DenseStep;
-use crate::law::contact::NormalForce;
 use crate::model::{Initial, Pair};
 use std::cell::RefCell;
 use std::f64::consts::PI;
@@ -129,19 +128,7 @@ fn begin<'a, 't, G: PairGeometry>(
     // The speed the error scales are floored by, spins included (the plate's).
     let spun = speed + pair.particle.r * init.omega.abs() + pair.r2 * init.partner_omega.abs();
     let t_est = PI * depth_est / init.vy.abs();
-    let mut ode = PairOde {
-        pair,
-        geometry,
-        mu: law.scene.mu,
-        normal: NormalForce::new(law),
-        inv: [
-            1.0 / pair.m_star,
-            1.0 / pair.particle.inertia,
-            1.0 / pair.i2,
-        ],
-        fd_step: 1e-7 * t_est,
-        held: Default::default(),
-    };
+    let mut ode = PairOde::new(pair, geometry, 1e-7 * t_est);
     let s: State = [
         start.q[0],
         start.q[1],

@@ -171,7 +171,6 @@ mod tests {
     use super::*;
     use crate::geometry::pair::DiscPair;
     use crate::geometry::Shape;
-    use crate::law::contact::NormalForce;
     use crate::model::{Model, Pair, Partner, Scene};
 
     /// (dF_n/dt, dF_trial/dt) at `s` slipping in mode `m` by central differences of step `h`
@@ -227,19 +226,7 @@ mod tests {
                     r2,
                     linear: matches!(law, NormalLaw::Linear { .. }),
                 };
-                let ode = PairOde {
-                    pair: &pair,
-                    geometry,
-                    mu: 0.5,
-                    normal: NormalForce::new(&pair.law),
-                    inv: [
-                        1.0 / pair.m_star,
-                        1.0 / pair.particle.inertia,
-                        1.0 / pair.i2,
-                    ],
-                    fd_step: 1e-9,
-                    held: Default::default(),
-                };
+                let ode = PairOde::new(&pair, geometry, 1e-9);
                 for _ in 0..300 {
                     let depth = 0.01f64.min(r2) * 10f64.powf(-5.0 + 4.5 * rng());
                     let (dist, ang) = (0.01 + r2 - depth, 6.3 * rng());

@@ -54,7 +54,25 @@ pub(super) struct PairOde<'a, G> {
     pub(super) held: HeldSprings,
 }
 
-impl<G: PairGeometry> PairOde<'_, G> {
+impl<'a, G: PairGeometry> PairOde<'a, G> {
+    /// The ODE of `pair` meeting through `geometry`, slip -> stick's forward difference taken
+    /// over `fd_step` (s).
+    pub(super) fn new(pair: &'a Pair, geometry: G, fd_step: f64) -> Self {
+        PairOde {
+            pair,
+            geometry,
+            mu: pair.law.scene.mu,
+            normal: NormalForce::new(&pair.law),
+            inv: [
+                1.0 / pair.m_star,
+                1.0 / pair.particle.inertia,
+                1.0 / pair.i2,
+            ],
+            fd_step,
+            held: Default::default(),
+        }
+    }
+
     /// The derivative `ds` of state `s` in mode `m`, and the forces.
     pub(super) fn eval(&self, m: &Mode, s: &State, ds: &mut State) -> Eval {
         self.eval_reading(m, s, ds, true)
@@ -342,19 +360,7 @@ mod tests {
         let pair = Pair::new(Model::new(&scene).unwrap()).unwrap();
         let mut geometry = ShapePair::new(&scene.shape, &pair.partner_shape).unwrap();
         geometry.springs = matches!(law, NormalLaw::Linear { .. });
-        let ode = PairOde {
-            pair: &pair,
-            geometry,
-            mu: 0.5,
-            normal: NormalForce::new(&pair.law),
-            inv: [
-                1.0 / pair.m_star,
-                1.0 / pair.particle.inertia,
-                1.0 / pair.i2,
-            ],
-            fd_step: 1e-9,
-            held: Default::default(),
-        };
+        let ode = PairOde::new(&pair, geometry, 1e-9);
         for _ in 0..200 {
             let (d, ang) = (0.023 * (0.8 + 0.4 * rng()), 6.3 * rng());
             let mut s: State = std::array::from_fn(|_| 2.0 * rng() - 1.0);
