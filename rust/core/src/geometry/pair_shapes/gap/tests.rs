@@ -1,6 +1,7 @@
 //! The gap's distances and separation against every edge's scan and the clip.
 
 use super::{corner_distance, distance_from_corner, distance_to_polygon, near_edges_distance};
+use crate::geometry::convex_clip::{clip_convex, ClipVertex, Ring};
 use crate::geometry::convex_window::PlacedPolygon;
 use crate::geometry::Polygon;
 
@@ -183,38 +184,21 @@ fn the_angular_bound_is_a_lower_bound() {
 fn a_separating_line_is_one_the_clip_agrees_with() {
     let mut seeded = crate::numerics::seeded::Seeded(9);
     let mut rng = move || seeded.uniform();
-    let (mut out, mut next) = (Vec::new(), Vec::new());
+    let mut clip = Default::default();
     let (mut certified, mut apart) = (0, 0);
-    let shape = |rng: &mut dyn FnMut() -> f64, n: usize| {
-        let aspect = 0.05 + 0.95 * rng();
-        let v: Vec<[f64; 2]> = (0..n)
-            .map(|k| {
-                let t = std::f64::consts::TAU * k as f64 / n as f64;
-                [t.cos(), aspect * t.sin()]
-            })
-            .collect();
-        Polygon::convex(&v).unwrap()
-    };
     for case in 0..3000 {
         let (n, m) = (
             [3usize, 4, 5, 12, 120, 1024][case % 6],
             [4usize, 5, 7, 33, 200][case % 5],
         );
-        let (pa, pb) = (shape(&mut rng, n), shape(&mut rng, m));
-        let (ra, rb) = (pa.circumradius(), pb.circumradius());
-        let ang = rng() * std::f64::consts::TAU;
-        let d = (ra + rb) * (0.2 + 1.0 * rng());
-        let at = [d * ang.cos(), d * ang.sin()];
-        let a = PlacedPolygon::new(&pa, at, rng() * 7.0);
-        let b = PlacedPolygon::new(&pb, [0.0, 0.0], rng() * 7.0);
-        let corners = |body: &PlacedPolygon| -> Vec<[f64; 2]> {
-            (0..body.polygon().vertices().len())
-                .map(|i| crate::geometry::convex_clip::Ring::corner(body, i))
-                .collect()
-        };
-        let (va, vb) = (corners(&a), corners(&b));
-        let overlap =
-            crate::geometry::convex_clip::clip_convex(&va[..], &vb[..], at, &mut out, &mut next);
+        let (pa, pb) = (elongated(&mut rng, n), elongated(&mut rng, m));
+        let Placed {
+            a,
+            b,
+            va,
+            vb,
+            overlap,
+        } = placed(&mut rng, (&pa, &pb), &mut clip);
         apart += usize::from(!overlap);
         if super::separated((&va, &a), (&vb, &b)) {
             certified += 1;
@@ -238,37 +222,17 @@ fn body_count(poly: &Polygon) -> usize {
 fn a_least_corner_outside_a_line_has_every_corner_outside_it() {
     let mut seeded = crate::numerics::seeded::Seeded(23);
     let mut rng = move || seeded.uniform();
-    let (mut out, mut next) = (Vec::new(), Vec::new());
+    let mut clip = Default::default();
     let (mut certified, mut apart) = (0, 0);
     for case in 0..3000 {
         let (n, m) = (
             [33usize, 48, 120, 1024][case % 4],
             [3usize, 5, 12, 120, 200][case % 5],
         );
-        let shape = |rng: &mut dyn FnMut() -> f64, n: usize| {
-            let aspect = 0.05 + 0.95 * rng();
-            let v: Vec<[f64; 2]> = (0..n)
-                .map(|k| {
-                    let t = std::f64::consts::TAU * k as f64 / n as f64;
-                    [t.cos(), aspect * t.sin()]
-                })
-                .collect();
-            Polygon::convex(&v).unwrap()
-        };
-        let (pa, pb) = (shape(&mut rng, n), shape(&mut rng, m));
-        let ang = rng() * std::f64::consts::TAU;
-        let d = (pa.circumradius() + pb.circumradius()) * (0.2 + 1.0 * rng());
-        let at = [d * ang.cos(), d * ang.sin()];
-        let a = PlacedPolygon::new(&pa, at, rng() * 7.0);
-        let b = PlacedPolygon::new(&pb, [0.0, 0.0], rng() * 7.0);
-        let corners = |body: &PlacedPolygon| -> Vec<[f64; 2]> {
-            (0..body.polygon().vertices().len())
-                .map(|i| crate::geometry::convex_clip::Ring::corner(body, i))
-                .collect()
-        };
-        let (va, vb) = (corners(&a), corners(&b));
-        let overlap =
-            crate::geometry::convex_clip::clip_convex(&va[..], &vb[..], at, &mut out, &mut next);
+        let (pa, pb) = (elongated(&mut rng, n), elongated(&mut rng, m));
+        let Placed {
+            a, b, va, overlap, ..
+        } = placed(&mut rng, (&pa, &pb), &mut clip);
         apart += usize::from(!overlap);
         if !super::corners_outside_a_line(&va, &a, &b) {
             continue;
@@ -293,4 +257,56 @@ fn a_least_corner_outside_a_line_has_every_corner_outside_it() {
     }
     eprintln!("{certified} certified of {apart} apart");
     assert!(certified * 2 >= apart, "{certified} of {apart}");
+}
+
+/// A convex polygon of `n` corners on an ellipse of aspect 1 to 20 to 1 (up to 1).
+fn elongated(rng: &mut dyn FnMut() -> f64, n: usize) -> Polygon {
+    let aspect = 0.05 + 0.95 * rng();
+    let v: Vec<[f64; 2]> = (0..n)
+        .map(|k| {
+            let t = std::f64::consts::TAU * k as f64 / n as f64;
+            [t.cos(), aspect * t.sin()]
+        })
+        .collect();
+    Polygon::convex(&v).unwrap()
+}
+
+/// Two polygons placed, their corners, and whether the full clip finds them overlapping.
+struct Placed<'a> {
+    a: PlacedPolygon<'a>,
+    b: PlacedPolygon<'a>,
+    va: Vec<[f64; 2]>,
+    vb: Vec<[f64; 2]>,
+    overlap: bool,
+}
+
+/// The clip's buffers, reused from case to case.
+type ClipBuffers = (Vec<ClipVertex>, Vec<ClipVertex>);
+
+/// `pa` turned at random and placed in a random direction at 0.2 to 1.2 times the sum of the
+/// circumradii from `pb`, turned at random at the origin: from crossed to apart.
+fn placed<'a>(
+    rng: &mut dyn FnMut() -> f64,
+    (pa, pb): (&'a Polygon, &'a Polygon),
+    (out, next): &mut ClipBuffers,
+) -> Placed<'a> {
+    let ang = rng() * std::f64::consts::TAU;
+    let d = (pa.circumradius() + pb.circumradius()) * (0.2 + 1.0 * rng());
+    let at = [d * ang.cos(), d * ang.sin()];
+    let a = PlacedPolygon::new(pa, at, rng() * 7.0);
+    let b = PlacedPolygon::new(pb, [0.0, 0.0], rng() * 7.0);
+    let corners = |body: &PlacedPolygon| -> Vec<[f64; 2]> {
+        (0..body.polygon().vertices().len())
+            .map(|i| Ring::corner(body, i))
+            .collect()
+    };
+    let (va, vb) = (corners(&a), corners(&b));
+    let overlap = clip_convex(&va[..], &vb[..], at, out, next);
+    Placed {
+        a,
+        b,
+        va,
+        vb,
+        overlap,
+    }
 }
