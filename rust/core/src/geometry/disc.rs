@@ -338,23 +338,9 @@ mod tests {
             0.04 * r,
             0.5 * r,
         ] {
-            // Gauss-Legendre on the area against depth t^2 (the area a power 3/2 in t^2 near
-            // touch: smooth in t), 40 panels of 4 points.
-            const G4: [(f64, f64); 4] = [
-                (-0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-                (-0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-                (0.339_981_043_584_856_3, 0.652_145_154_862_546_1),
-                (0.861_136_311_594_052_6, 0.347_854_845_137_453_9),
-            ];
-            let n = 40;
-            let mut quad = 0.0;
-            for i in 0..n {
-                for &(g, w) in &G4 {
-                    let t = (i as f64 + 0.5 * (g + 1.0)) / n as f64;
-                    let (_, a) = disc_segment_moment(r, depth * t * t);
-                    quad += 0.5 * w / n as f64 * a * 2.0 * depth * t;
-                }
-            }
+            // The segment's area integrated over the depth (`numerics::quadrature`).
+            let quad =
+                crate::numerics::quadrature::over_depth(|s| disc_segment_moment(r, s).1, depth);
             let (moment, _) = disc_segment_moment(r, depth);
             // The closed form keeps about 2e-13 (its area's u - sin u, above).
             let tol = if depth * (0.5 / r) < DISC_SERIES_MAX_X {
