@@ -2,7 +2,7 @@
 //! ([`crate::geometry::convex_clip`]), its chord through the two crossings of the boundaries,
 //! and the area law's conservative push from the potential of `potential.rs`.
 
-use super::potential::{polygon_cap, potential_push, Cap, Crossing};
+use super::potential::{polygon_cap, potential_push, Cap, CapSum, Crossing};
 use super::springs::corner_springs;
 use super::{assemble_into, sub, ShapePatch};
 use crate::geometry::convex_clip::{
@@ -500,7 +500,11 @@ fn caps_of(out: &[ClipVertex], (k0, k1): (usize, usize)) -> [Cap; 2] {
     debug_assert!(k0 < k1, "the crossings in the clip's order");
     let o = out[k0].p;
     let forward = polygon_cap(out[k0..=k1].iter().map(|v| v.p), o);
-    let back = polygon_cap(out[k1..].iter().chain(&out[..=k0]).map(|v| v.p), o);
+    // From k1 round to k0: two runs of the slice, summed in turn.
+    let mut back = CapSum::start(out[k1].p, o);
+    out[k1 + 1..].iter().for_each(|v| back.push(v.p));
+    out[..=k0].iter().for_each(|v| back.push(v.p));
+    let back = back.finish();
     let particle_first = matches!(out[k0].after, crate::geometry::convex_clip::EdgeLine::A(_));
     if particle_first {
         [forward, back]
