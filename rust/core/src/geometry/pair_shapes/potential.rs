@@ -132,30 +132,63 @@ pub(crate) fn gradient(q: [f64; 2], n: [f64; 2], c: [Crossing; 2], caps: [Cap; 2
 
 /// A polygon's area and first moment about `o` (shoelace, relative to `o` so that slivers
 /// keep their digits).
-pub(crate) fn polygon_cap(points: impl Iterator<Item = [f64; 2]>, o: [f64; 2]) -> Cap {
-    let (mut a2, mut mx, mut my) = (0.0, 0.0, 0.0);
-    let mut first: Option<[f64; 2]> = None;
-    let mut prev = [0.0; 2];
-    for p in points {
-        let r = sub(p, o);
-        if first.is_none() {
-            first = Some(r);
-        } else {
-            let w = cross(prev, r);
-            a2 += w;
-            mx += (prev[0] + r[0]) * w;
-            my += (prev[1] + r[1]) * w;
+pub(crate) fn polygon_cap(mut points: impl Iterator<Item = [f64; 2]>, o: [f64; 2]) -> Cap {
+    let Some(p0) = points.next() else {
+        return CapSum::start([0.0; 2], [0.0; 2]).finish();
+    };
+    let mut sum = CapSum::start(p0, o);
+    points.for_each(|p| sum.push(p));
+    sum.finish()
+}
+
+/// The shoelace sums of [`polygon_cap`], fed one vertex at a time (a polygon whose vertices
+/// lie in two runs of a slice is summed without chaining iterators).
+pub(crate) struct CapSum {
+    o: [f64; 2],
+    first: [f64; 2],
+    prev: [f64; 2],
+    a2: f64,
+    mx: f64,
+    my: f64,
+}
+
+impl CapSum {
+    /// The sums of the polygon's first vertex `p0`, about `o`.
+    #[inline(always)]
+    pub(crate) fn start(p0: [f64; 2], o: [f64; 2]) -> Self {
+        let r = sub(p0, o);
+        CapSum {
+            o,
+            first: r,
+            prev: r,
+            a2: 0.0,
+            mx: 0.0,
+            my: 0.0,
         }
-        prev = r;
     }
-    if let Some(r0) = first {
-        let w = cross(prev, r0);
-        a2 += w;
-        mx += (prev[0] + r0[0]) * w;
-        my += (prev[1] + r0[1]) * w;
+
+    /// The next vertex `p`.
+    #[inline(always)]
+    pub(crate) fn push(&mut self, p: [f64; 2]) {
+        let r = sub(p, self.o);
+        let w = cross(self.prev, r);
+        self.a2 += w;
+        self.mx += (self.prev[0] + r[0]) * w;
+        self.my += (self.prev[1] + r[1]) * w;
+        self.prev = r;
     }
-    Cap {
-        area: 0.5 * a2,
-        moment: [mx / 6.0, my / 6.0],
+
+    /// The polygon closed back to its first vertex.
+    #[inline(always)]
+    pub(crate) fn finish(mut self) -> Cap {
+        let r0 = self.first;
+        let w = cross(self.prev, r0);
+        self.a2 += w;
+        self.mx += (self.prev[0] + r0[0]) * w;
+        self.my += (self.prev[1] + r0[1]) * w;
+        Cap {
+            area: 0.5 * self.a2,
+            moment: [self.mx / 6.0, self.my / 6.0],
+        }
     }
 }
