@@ -523,9 +523,15 @@ fn push<G: PairGeometry>(side: &OnPair<'_, G>, (m, s, t): (&Mode, &State, f64), 
 /// output.
 fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) -> [f64; 2] {
     let step = samples.step;
-    // The normal velocity reads four components: the others are not formed.
+    // The normal velocity reads four components: the others are not formed, nor, at the
+    // step's ends, the dense output's coefficients (the start's value is y0's, a zero's sign
+    // aside, which a product and sum of the two directions' terms does not show).
     let g_n = |th: f64| {
-        let c = |i| step.component_at(th, i);
+        let c = |i| match th {
+            0.0 => step.y0[i],
+            1.0 => step.component_at_end(i),
+            _ => step.component_at(th, i),
+        };
         c(X) * c(GX) + c(Y) * c(GY)
     };
     let (a, b) = (g_n(0.0), g_n(theta));

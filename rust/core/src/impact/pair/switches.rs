@@ -9,7 +9,7 @@ use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
 use crate::integrate::dopri::DenseStep;
-use std::cell::{OnceCell, RefCell};
+use std::cell::RefCell;
 
 /// The switches a step does not look for, where they chattered (the adaptive rules'
 /// remedies, `Chatter`).
@@ -37,8 +37,8 @@ pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) step: &'s DenseStep<NS, INTERPOLATED>,
     /// The last stage's evaluation, at the step's 5th-order end `y1`.
     at_end: Eval,
-    /// The dense output at the step's end, formed once: every candidate event samples it.
-    end_state: OnceCell<State>,
+    /// The dense output at the step's end: every candidate event samples it.
+    end_state: State,
     kept: &'s RefCell<KeptSamples>,
 }
 
@@ -68,7 +68,7 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
             mode,
             step,
             at_end,
-            end_state: OnceCell::new(),
+            end_state: step.at_end(),
             kept,
         }
     }
@@ -76,7 +76,7 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     /// The dense output at fraction `th` of the step, the same bits as [`DenseStep::at`].
     pub(super) fn state_at(&self, th: f64) -> State {
         if th == 1.0 {
-            *self.end_state.get_or_init(|| self.step.at(1.0))
+            self.end_state
         } else {
             self.step.at(th)
         }
