@@ -91,6 +91,22 @@ impl<'a, G: PairGeometry> PairOde<'a, G> {
     /// [`Self::eval`]; `gap`: bodies the held overlap does not find in contact are measured
     /// apart (their depth minus their gap, else -inf where no overlap is found).
     fn eval_reading(&self, m: &Mode, s: &State, ds: &mut State, gap: bool) -> Eval {
+        self.eval_inlined(m, s, ds, gap)
+    }
+
+    /// The law's evaluation at `s` in mode `m` without the derivative, the same bits as
+    /// [`Self::eval`]'s: an event function reads the forces and the contact alone, and the
+    /// derivative's assembly (the forces on the lanes, the works' powers) was a fifth of the
+    /// evaluations the switches' searches take.
+    pub(super) fn eval_value(&self, m: &Mode, s: &State) -> Eval {
+        let mut unread = [0.0; NS];
+        self.eval_inlined(m, s, &mut unread, true)
+    }
+
+    /// [`Self::eval_reading`]'s body, compiled into each of its callers (so that where the
+    /// derivative is not read it is not formed).
+    #[inline(always)]
+    fn eval_inlined(&self, m: &Mode, s: &State, ds: &mut State, gap: bool) -> Eval {
         #[cfg(feature = "bench-counters")]
         crate::counters::count_pair_law_evaluation();
         let q = [s[X], s[Y], s[4], s[6]];
