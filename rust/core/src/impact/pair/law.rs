@@ -112,7 +112,15 @@ impl<'a, G: PairGeometry> PairOde<'a, G> {
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
         let mut e = Eval::default();
-        match self.geometry.frame_held(&q, &self.held) {
+        // Round bodies hold nothing: their frame is the held one, and inlined (held
+        // through the trait's default it stayed a call, and wrote the whole frame, the linear
+        // law's springs included, to be read back: a sixth of two discs' impact).
+        let frame = if G::CORNERS {
+            self.geometry.frame_held(&q, &self.held)
+        } else {
+            self.geometry.frame(&q)
+        };
+        match frame {
             Some(fr) => {
                 let normal = self.normal.on_pair(&fr, &v, G::CORNERS);
                 e.f_raw = normal.f_el + normal.f_d;
