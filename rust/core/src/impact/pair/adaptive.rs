@@ -198,14 +198,18 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 
     fn dp_step(&self, m: &Mode, s: &State, k1: &State, h: f64, out: &mut PairStep) -> f64 {
         let (ode, mode) = (&self.ode, *m);
-        let mut at_end = Eval::default();
-        let (tangential, depths) = (&mut out.tangential, &mut out.depths);
+        let PairStep {
+            dp,
+            end,
+            tangential,
+            depths,
+        } = out;
         tangential.begin();
         // The inner stages' depths are read for their signs alone (the stage filters'), and
         // in flight the law's derivative reads no contact: only the last stage's evaluation
         // (the step's end, where its switches are looked for) measures the gap.
         let flying = G::CORNERS && mode.apart && matches!(mode.tan, Tan::None | Tan::Free);
-        out.dp.take(s, k1, h, |stage, y, k| {
+        dp.take(s, k1, h, |stage, y, k| {
             let e = if stage == 6 {
                 ode.eval(&mode, y, k)
             } else if flying {
@@ -220,11 +224,10 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
                 Tan::None | Tan::Free => {}
             }
             if stage == 6 {
-                at_end = e;
+                *end = e;
             }
         });
-        out.end = at_end;
-        self.scaled_norm(m, &out.dp.err)
+        self.scaled_norm(m, &dp.err)
     }
 
     fn step_end(step: &PairStep) -> (&State, &State) {
@@ -267,7 +270,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         side.step_ignored = ignored;
         let firm = side.stays_in_tangential_mode(&run.mode, step);
         side.firm_slip = firm && matches!(run.mode.tan, Tan::Slip(_));
-        let samples = StepSamples::new(&side.ode, run.mode, (&step.dp, step.end), &side.kept);
+        let samples = StepSamples::new(&side.ode, run.mode, (&step.dp, &step.end), &side.kept);
         let first = first_switch(&samples, ignored, firm);
         let theta = first.map_or(1.0, |(th, _)| th);
         side.extremes = (theta * step.dp.h_len() > 0.0).then(|| extremes_in(&samples, theta));
@@ -523,17 +526,23 @@ fn push<G: PairGeometry>(side: &OnPair<'_, G>, (m, s, t): (&Mode, &State, f64), 
 /// output.
 fn extremes_in<G: PairGeometry>(samples: &StepSamples<'_, '_, G>, theta: f64) -> [f64; 2] {
     let step = samples.step;
-    // The normal velocity reads four components: the others are not formed.
+    // The normal velocity reads four components: the others are not formed, nor, at the
+    // step's ends, the dense output's coefficients (the start's value is y0's, a zero's sign
+    // aside, which a product and sum of the two directions' terms does not show).
     let g_n = |th: f64| {
-        let c = |i| step.component_at(th, i);
+        let c = |i| match th {
+            0.0 => step.y0[i],
+            1.0 => step.component_at_end(i),
+            _ => step.component_at(th, i),
+        };
         c(X) * c(GX) + c(Y) * c(GY)
     };
     let (a, b) = (g_n(0.0), g_n(theta));
     let at = [Some(theta), turning_point(g_n, a, (theta, b))];
     let mut most = [f64::NEG_INFINITY; 2];
     for th in at.into_iter().flatten() {
-        let e = samples.eval_at(th, &samples.state_at(th));
-        most = [most[0].max(e.depth), most[1].max(e.area)];
+        let [depth, area] = samples.depth_and_area_at(th);
+        most = [most[0].max(depth), most[1].max(area)];
     }
     most
 }

@@ -42,7 +42,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
 
     /// The value of event `ev`'s function at state `s` in mode `m` (> 0: it fired).
     pub(super) fn event_value(&self, m: &Mode, ev: Event, s: &State) -> f64 {
-        self.event_value_with(m, ev, s, || self.eval_new(m, s).1)
+        self.event_value_with(m, ev, s, || self.eval_value(m, s))
     }
 
     /// [`Self::event_value`], the law's evaluation at `s` in mode `m` given by `eval` (called
@@ -54,19 +54,39 @@ impl<G: PairGeometry> PairOde<'_, G> {
         s: &State,
         eval: impl FnOnce() -> Eval,
     ) -> f64 {
+        self.state_event_value(ev, s)
+            .unwrap_or_else(|| self.event_value_of(m, ev, s, &eval()))
+    }
+
+    /// The value of event `ev`'s function at `s` where it reads the positions alone: the
+    /// held springs', and round bodies' separation and touch (their depth is their gap's,
+    /// r1 + r2 - d, in contact and apart alike, the law's own), so that their searches need
+    /// no evaluation of the law; `None` for the others.
+    pub(super) fn state_event_value(&self, ev: Event, s: &State) -> Option<f64> {
+        let q = [s[X], s[Y], s[4], s[6]];
         if ev == Event::Springs {
-            let q = [s[X], s[Y], s[4], s[6]];
-            return self.geometry.held_springs_value(&q, &self.held);
+            return Some(self.geometry.held_springs_value(&q, &self.held));
         }
-        let e = eval();
+        if !G::CORNERS && matches!(ev, Event::Separate | Event::Touch) {
+            let depth = self.geometry.signed_depth(&q);
+            return Some(if ev == Event::Separate { -depth } else { depth });
+        }
+        None
+    }
+
+    /// [`Self::event_value`] given the law's evaluation `e` at `s` in mode `m`.
+    pub(super) fn event_value_of(&self, m: &Mode, ev: Event, s: &State, e: &Eval) -> f64 {
         match ev {
             Event::Separate => -e.depth,
             Event::Touch => e.depth,
             Event::ClipOn => -e.f_raw,
             Event::ClipOff => e.f_raw,
-            Event::ToSlip => self.to_slip_value(&e),
-            Event::ToStick => self.to_stick_value(m, s, &e),
-            Event::Springs => unreachable!("answered above"),
+            Event::ToSlip => self.to_slip_value(e),
+            Event::ToStick => self.to_stick_value(m, s, e),
+            Event::Springs => {
+                let q = [s[X], s[Y], s[4], s[6]];
+                self.geometry.held_springs_value(&q, &self.held)
+            }
         }
     }
 
@@ -118,7 +138,7 @@ impl<G: PairGeometry> PairOde<'_, G> {
         }
         let h = self.fd_step;
         let ahead: State = std::array::from_fn(|i| held[i] + h * d_stick[i]);
-        let later = self.eval_new(&stick, &ahead).1;
+        let later = self.eval_value(&stick, &ahead);
         ((later.f_raw - now.f_raw) / h, (later.trial - now.trial) / h)
     }
 

@@ -91,12 +91,36 @@ impl<'a, G: PairGeometry> PairOde<'a, G> {
     /// [`Self::eval`]; `gap`: bodies the held overlap does not find in contact are measured
     /// apart (their depth minus their gap, else -inf where no overlap is found).
     fn eval_reading(&self, m: &Mode, s: &State, ds: &mut State, gap: bool) -> Eval {
+        self.eval_inlined(m, s, ds, gap)
+    }
+
+    /// The law's evaluation at `s` in mode `m` without the derivative, the same bits as
+    /// [`Self::eval`]'s: an event function reads the forces and the contact alone, and the
+    /// derivative's assembly (the forces on the lanes, the works' powers) was a fifth of the
+    /// evaluations the switches' searches take.
+    pub(super) fn eval_value(&self, m: &Mode, s: &State) -> Eval {
+        let mut unread = [0.0; NS];
+        self.eval_inlined(m, s, &mut unread, true)
+    }
+
+    /// [`Self::eval_reading`]'s body, compiled into each of its callers (so that where the
+    /// derivative is not read it is not formed).
+    #[inline(always)]
+    fn eval_inlined(&self, m: &Mode, s: &State, ds: &mut State, gap: bool) -> Eval {
         #[cfg(feature = "bench-counters")]
         crate::counters::count_pair_law_evaluation();
         let q = [s[X], s[Y], s[4], s[6]];
         let v = [s[GX], s[GY], s[W1], s[W2]];
         let mut e = Eval::default();
-        match self.geometry.frame_held(&q, &self.held) {
+        // Round bodies hold nothing: their frame is the held one, and inlined (held
+        // through the trait's default it stayed a call, and wrote the whole frame, the linear
+        // law's springs included, to be read back: a sixth of two discs' impact).
+        let frame = if G::CORNERS {
+            self.geometry.frame_held(&q, &self.held)
+        } else {
+            self.geometry.frame(&q)
+        };
+        match frame {
             Some(fr) => {
                 let normal = self.normal.on_pair(&fr, &v, G::CORNERS);
                 e.f_raw = normal.f_el + normal.f_d;

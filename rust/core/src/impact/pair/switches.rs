@@ -9,7 +9,7 @@ use crate::impact::adaptive::{
     first_positive_sample, locate_switch, sampled_first_switch, TANGENTIAL_PARTS,
 };
 use crate::integrate::dopri::DenseStep;
-use std::cell::{OnceCell, RefCell};
+use std::cell::RefCell;
 
 /// The switches a step does not look for, where they chattered (the adaptive rules'
 /// remedies, `Chatter`).
@@ -36,9 +36,12 @@ pub(super) struct StepSamples<'s, 'a, G> {
     pub(super) mode: Mode,
     pub(super) step: &'s DenseStep<NS, INTERPOLATED>,
     /// The last stage's evaluation, at the step's 5th-order end `y1`.
-    at_end: Eval,
-    /// The dense output at the step's end, formed once: every candidate event samples it.
-    end_state: OnceCell<State>,
+    at_end: &'s Eval,
+    /// The dense output at the step's end: every candidate event samples it.
+    end_state: State,
+    /// Whether `end_state` is the last stage's state `y1` bit for bit in the components the
+    /// law reads (y0 + (y1 - y0) need not round to it): then `at_end` is the law there.
+    end_is_stage: bool,
     kept: &'s RefCell<KeptSamples>,
 }
 
@@ -59,16 +62,22 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     pub(super) fn new(
         ode: &'s PairOde<'a, G>,
         mode: Mode,
-        (step, at_end): (&'s DenseStep<NS, INTERPOLATED>, Eval),
+        (step, at_end): (&'s DenseStep<NS, INTERPOLATED>, &'s Eval),
         kept: &'s RefCell<KeptSamples>,
     ) -> Self {
         kept.borrow_mut().count = 0;
+        let end_state = step.at_end();
+        let end_is_stage = end_state[..INTERPOLATED]
+            .iter()
+            .zip(&step.y1)
+            .all(|(a, b)| a.to_bits() == b.to_bits());
         StepSamples {
             ode,
             mode,
             step,
             at_end,
-            end_state: OnceCell::new(),
+            end_state,
+            end_is_stage,
             kept,
         }
     }
@@ -76,26 +85,20 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     /// The dense output at fraction `th` of the step, the same bits as [`DenseStep::at`].
     pub(super) fn state_at(&self, th: f64) -> State {
         if th == 1.0 {
-            *self.end_state.get_or_init(|| self.step.at(1.0))
+            self.end_state
         } else {
             self.step.at(th)
         }
     }
 
-    /// The law's evaluation at fraction `th` of the step.
+    /// The law's evaluation at fraction `th` of the step, whose state there `s` is
+    /// ([`Self::state_at`]).
     pub(super) fn eval_at(&self, th: f64, s: &State) -> Eval {
-        // The dense output at the step's end is the last stage's state where it rounds to it
-        // bit for bit (y0 + (y1 - y0) need not) in the components the law reads.
-        if th == 1.0
-            && s[..INTERPOLATED]
-                .iter()
-                .zip(&self.step.y1)
-                .all(|(a, b)| a.to_bits() == b.to_bits())
-        {
-            return self.at_end;
+        if th == 1.0 && self.end_is_stage {
+            return *self.at_end;
         }
         if !G::CORNERS {
-            return self.ode.eval_new(&self.mode, s).1;
+            return self.ode.eval_value(&self.mode, s);
         }
         let key = th.to_bits();
         let mut kept = self.kept.borrow_mut();
@@ -107,7 +110,7 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
         {
             return *e;
         }
-        let e = self.ode.eval_new(&self.mode, s).1;
+        let e = self.ode.eval_value(&self.mode, s);
         // The first fraction sampled is the step's end (every candidate's first): kept; the
         // latest others in turn in the slots after it.
         let slot = if count < SAMPLES_KEPT {
@@ -123,13 +126,30 @@ impl<'s, 'a, G: PairGeometry> StepSamples<'s, 'a, G> {
     /// The value of event `ev`'s function at fraction `th` of the step
     /// ([`PairOde::event_value`]).
     fn event_value(&self, ev: Event, th: f64) -> f64 {
-        if ev == Event::Springs {
-            // The held springs' function reads the positions alone.
-            return self.ode.event_value(&self.mode, ev, &self.state_at(th));
+        let (ode, m) = (self.ode, &self.mode);
+        if th < 1.0 {
+            let s = self.step.at(th);
+            return ode.event_value_with(m, ev, &s, || self.eval_at(th, &s));
         }
-        let s = self.state_at(th);
-        self.ode
-            .event_value_with(&self.mode, ev, &s, || self.eval_at(th, &s))
+        // The step's end and its evaluation read where they are kept, not copied: every
+        // candidate samples them.
+        let s = &self.end_state;
+        if let Some(value) = ode.state_event_value(ev, s) {
+            value
+        } else if self.end_is_stage {
+            ode.event_value_of(m, ev, s, self.at_end)
+        } else {
+            ode.event_value_of(m, ev, s, &self.eval_at(th, s))
+        }
+    }
+
+    /// The overlap's depth and area at fraction `th` of the step ([`Self::eval_at`]).
+    pub(super) fn depth_and_area_at(&self, th: f64) -> [f64; 2] {
+        if th == 1.0 && self.end_is_stage {
+            return [self.at_end.depth, self.at_end.area];
+        }
+        let e = self.eval_at(th, &self.state_at(th));
+        [e.depth, e.area]
     }
 }
 
