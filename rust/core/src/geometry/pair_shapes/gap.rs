@@ -5,6 +5,7 @@
 use super::{cross, dot, sub};
 use crate::geometry::convex_clip::{wrap, ClipVertex};
 use crate::geometry::convex_window::{clip_windowed, PlacedPolygon, WindowScratch};
+use across::{gap_across, separating_line};
 use std::cell::{Cell, RefCell};
 
 /// Whether `p` lies inside (or on) the counter-clockwise convex polygon `b`.
@@ -261,8 +262,22 @@ pub(super) fn separated_gap(
     (a, body_a): (&[[f64; 2]], &PlacedPolygon),
     (b, body_b): (&[[f64; 2]], &PlacedPolygon),
 ) -> Option<f64> {
-    if !separated((a, body_a), (b, body_b)) {
-        return None;
+    // The polygon of fewer corners against a line of the other, as `separated` tries them
+    // (its search for many corners second: the two are pure, either answer is its answer).
+    if a.len() <= b.len() {
+        if let Some(line) = separating_line(a, body_b) {
+            return Some(gap_across(&line, (a, body_a), (b, body_b), 1));
+        }
+        if !corners_outside_a_line(a, body_a, body_b) {
+            return None;
+        }
+    } else {
+        if let Some(line) = separating_line(b, body_a) {
+            return Some(gap_across(&line, (b, body_b), (a, body_a), 0));
+        }
+        if !corners_outside_a_line(b, body_b, body_a) {
+            return None;
+        }
     }
     // The two distances in `gap`'s order: each moves its body's search hint.
     let to_b = vertices_distance((a, body_a), (b, body_b), 1);
@@ -271,34 +286,9 @@ pub(super) fn separated_gap(
 }
 
 /// Whether every corner of `a` lies outside one line of `body`'s edges, by a margin
-/// ([`separated`]).
+/// ([`separated`], [`separating_line`]).
 fn outside_a_line(a: &[[f64; 2]], body: &PlacedPolygon) -> bool {
-    let c = body.centre();
-    let dist2 = |p: [f64; 2]| {
-        let d = sub(p, c);
-        dot(d, d)
-    };
-    let Some(&first) = a.first() else {
-        return false;
-    };
-    let nearest = a.iter().fold(
-        first,
-        |best, &p| {
-            if dist2(p) < dist2(best) {
-                p
-            } else {
-                best
-            }
-        },
-    );
-    let [nx, ny, h] = facing_edge_line(body, nearest, 0);
-    // The line in the world frame: n . (p - c) - h, n turned by the body's angle.
-    let n = body.in_world([nx, ny]);
-    let scale = body.polygon().circumradius() + c[0].abs() + c[1].abs();
-    a.iter().all(|&p| {
-        let beyond = n[0] * (p[0] - c[0]) + n[1] * (p[1] - c[1]) - h;
-        beyond > SEPARATION * (scale + p[0].abs() + p[1].abs())
-    })
+    separating_line(a, body).is_some()
 }
 
 /// The line of `body`'s edges (body frame: unit outward normal and offset) that the point `p`
@@ -466,5 +456,6 @@ fn few_corners_distance(
     best
 }
 
+mod across;
 #[cfg(test)]
 mod tests;

@@ -217,13 +217,14 @@ fn a_separating_line_is_one_the_clip_agrees_with() {
 /// other body's every edge, bit for bit: random convex polygons of 3 to 1024 corners,
 /// elongated up to 20 to 1, of sizes 1e-2 to 1e2 apart, turned at random and placed from
 /// crossed to apart, and at gaps of 1e-12 to 1e-1 of the smaller size from touching, both
-/// ways round, hints left by the cases before.
+/// ways round, hints left by the cases before; and so is the gap across a separating line
+/// (`separated_gap`), from the corners that can be nearest across it alone.
 #[test]
 fn the_corners_least_distance_is_every_corners_bit_for_bit() {
     let mut seeded = crate::numerics::seeded::Seeded(31);
     let mut rng = move || seeded.uniform();
     let mut clip: ClipBuffers = Default::default();
-    let mut walked = 0;
+    let (mut walked, mut across) = (0, 0);
     for case in 0..2400 {
         let (n, m) = (
             [3usize, 12, 33, 120, 1024, 200][case % 6],
@@ -240,6 +241,7 @@ fn the_corners_least_distance_is_every_corners_bit_for_bit() {
             let gap = 10f64.powf(11.0 * rng() - 12.0) * pa.inradius.min(pb.inradius);
             near_touch(&mut rng, (&pa, &pb), gap, &mut clip)
         };
+        let mut both = f64::INFINITY;
         for (side, ((x, bx), (y, by))) in [((&va, &a), (&vb, &b)), ((&vb, &b), (&va, &a))]
             .into_iter()
             .enumerate()
@@ -255,9 +257,19 @@ fn the_corners_least_distance_is_every_corners_bit_for_bit() {
                 "case {case}: {got:e} vs {every:e}"
             );
             walked += usize::from(x.len() > super::FEW_EDGES);
+            both = both.min(every);
+        }
+        // Across a separating line: the corners that can be nearest alone.
+        if let Some(got) = super::separated_gap((&va, &a), (&vb, &b)) {
+            assert_eq!(
+                got.to_bits(),
+                both.to_bits(),
+                "case {case}: {got:e} vs {both:e}"
+            );
+            across += 1;
         }
     }
-    assert!(walked > 1500, "{walked}");
+    assert!(walked > 1500 && across > 800, "{walked} {across}");
 }
 
 /// `poly` scaled by `size` about its centroid.
