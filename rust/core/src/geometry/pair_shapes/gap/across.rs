@@ -7,13 +7,13 @@ use crate::geometry::pair_shapes::{dot, sub};
 /// A line of a body's edges in the world frame: a point p lies `beyond` it by n . (p - c) - h
 /// (n the edge's unit outward normal, c the body's centre, h the edge's offset from it).
 #[derive(Debug, Clone, Copy)]
-pub(super) struct EdgeLine {
+pub(super) struct SeparatingLine {
     n: [f64; 2],
     c: [f64; 2],
     h: f64,
 }
 
-impl EdgeLine {
+impl SeparatingLine {
     /// How far beyond the line `p` lies (negative inside).
     #[inline(always)]
     fn beyond(&self, p: [f64; 2]) -> f64 {
@@ -24,7 +24,7 @@ impl EdgeLine {
 
 /// The line of `body`'s edges facing the corner of `a` nearest its centre, where every corner
 /// of `a` lies outside it by [`SEPARATION`] of the coordinates; `None` where one does not.
-pub(super) fn separating_line(a: &[[f64; 2]], body: &PlacedPolygon) -> Option<EdgeLine> {
+pub(super) fn separating_line(a: &[[f64; 2]], body: &PlacedPolygon) -> Option<SeparatingLine> {
     let c = body.centre();
     let dist2 = |p: [f64; 2]| {
         let d = sub(p, c);
@@ -43,7 +43,7 @@ pub(super) fn separating_line(a: &[[f64; 2]], body: &PlacedPolygon) -> Option<Ed
     );
     let [nx, ny, h] = facing_edge_line(body, nearest, 0);
     // The line in the world frame: n turned by the body's angle.
-    let line = EdgeLine {
+    let line = SeparatingLine {
         n: body.in_world([nx, ny]),
         c,
         h,
@@ -71,7 +71,7 @@ pub(super) fn separating_line(a: &[[f64; 2]], body: &PlacedPolygon) -> Option<Ed
 /// an edge is now the only one measured. Every bound is made smaller, and the least larger, by
 /// a margin far above the round-off of the placed corners, the bounds and the distances.
 pub(super) fn gap_across(
-    line: &EdgeLine,
+    line: &SeparatingLine,
     (x, body_x): (&[[f64; 2]], &PlacedPolygon),
     (y, body_y): (&[[f64; 2]], &PlacedPolygon),
     y_side: usize,
@@ -159,7 +159,13 @@ pub(super) fn gap_across(
 /// The least and largest of t . p over the part of the convex polygon `x` (corners) lying
 /// beyond `line` by at most `level` (which corner `k` does): over its corners there, one arc
 /// around k, and the crossings of the edges leaving the arc with the parallel line at `level`.
-fn cap_extent(line: &EdgeLine, x: &[[f64; 2]], k: usize, t: [f64; 2], level: f64) -> (f64, f64) {
+fn cap_extent(
+    line: &SeparatingLine,
+    x: &[[f64; 2]],
+    k: usize,
+    t: [f64; 2],
+    level: f64,
+) -> (f64, f64) {
     let n = x.len();
     let s = |i: usize| dot(t, x[i]);
     let (mut lo, mut hi) = (s(k), s(k));
