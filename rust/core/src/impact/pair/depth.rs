@@ -330,9 +330,9 @@ mod tests {
     /// the potential continued from the anchor by Simpson's rule) is the root of the potential
     /// integrated finely (400 panels of 8-point Gauss-Legendre in the approach, the area's
     /// kinks resolved) to within the 8-point quadrature's own error: random pairs of regular 3-
-    /// to 120-gons and convex polygons, partners 0.5 to 2 times the size, at random
+    /// to 120-gons and convex polygons (and a polygon on a disc), partners 0.5 to 2 times the size, at random
     /// orientations and speeds from 1e-3 to 3 m/s; and its rate is its derivative. Prints the largest errors, the 8-point
-    /// root's and the continued one's (2.0e-4 and 1.9e-4).
+    /// root's and the continued one's (2.7e-4 and 1.9e-4).
     #[test]
     fn the_continued_root_is_the_fine_potential_s() {
         let mut seeded = crate::numerics::seeded::Seeded(5);
@@ -356,7 +356,14 @@ mod tests {
                 }
             };
             let a = shape(0.01, &mut rng);
-            let b = shape(0.01 * (0.5 + 1.5 * rng()), &mut rng);
+            let r2 = 0.01 * (0.5 + 1.5 * rng());
+            // A disc for the partner in one case of six (its arcs' area is smooth, not
+            // quadratic, between corner events: Simpson's rule is then exact to h^4).
+            let b = if case % 6 == 5 {
+                Shape::Disc { r: r2 }
+            } else {
+                shape(r2, &mut rng)
+            };
             let scene = Scene {
                 shape: a.clone(),
                 partner: Some(Partner::of(b.clone())),
@@ -406,10 +413,11 @@ mod tests {
                 (continued - reference).abs() / reference,
             );
             (worst_gauss, worst_continued) = (worst_gauss.max(e8), worst_continued.max(ec));
-            // The anchor's 8-point potential, continued: within a few times that rule's own
-            // error, or a small part of the overlap where it happens to be nearly exact.
+            // The anchor's 8-point potential, continued: its error, plus Simpson's rule's across
+            // the corner events between the anchor and the root (the two cases of 120 where
+            // the continuation's own error showed, 4.9e-5 and 4.5e-5).
             assert!(
-                ec <= 3.0 * e8 + 1e-5,
+                ec <= e8 + 1e-4,
                 "case {case}, v {v}: continued {ec:e}, 8-point {e8:e} from {reference:e}"
             );
         }
