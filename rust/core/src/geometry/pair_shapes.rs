@@ -337,8 +337,8 @@ impl<'a> ShapePair<'a> {
                     let (body_a, body_b) = placed_pair((a, b), q);
                     place_into(pa, a, at, q[2]);
                     place_into(pb, b, [0.0, 0.0], q[3]);
-                    let to_b = vertices_distance(pa, pb, &body_b, 1);
-                    let to_a = vertices_distance(pb, pa, &body_a, 0);
+                    let to_b = vertices_distance((pa, &body_a), (pb, &body_b), 1);
+                    let to_a = vertices_distance((pb, &body_b), (pa, &body_a), 0);
                     let apart = to_b.min(to_a);
                     // Overlapping, 0; else the corners' least distance. A corner inside the
                     // other body (0) and a line of one body with the other wholly outside

@@ -3,6 +3,7 @@
 //! on the other body's top.
 
 use super::{dot, placed, sub, PairBody};
+use crate::geometry::convex_clip::wrap;
 
 /// The height of the particle's centre above the partner's at which they touch with
 /// orientations `phi` = (phi1, phi2) (rad).
@@ -59,16 +60,35 @@ fn corners_over_top(a: &[[f64; 2]], b: &[[f64; 2]]) -> f64 {
     if chain.len() != (0..m).filter(|&j| faces_up(j)).count() {
         return corners_over_edges(a, b, 0..m);
     }
-    let mut best = f64::NEG_INFINITY;
-    for v in a {
+    let over = |v: [f64; 2], best: &mut f64| {
         // The edges whose far end is still right of the corner come first; the corner lies
         // over the next edge, and over the one after where it lies on their shared end.
         let k0 = chain.partition_point(|(_, q)| q[0] > v[0]);
         for &(p, q) in chain[k0..].iter().take(2) {
             if v[0] <= p[0] && v[0] >= q[0] {
-                best = best.max(height_over_edge(*v, p, q));
+                *best = best.max(height_over_edge(v, p, q));
             }
         }
+    };
+    // A corner rests on an edge at most as high as b's highest corner, so at most that less
+    // its own height (plus the round-off of the edge's interpolation, a few ulps): from a's
+    // lowest corner the heights rise along both sides of its boundary (a is convex), and once
+    // a corner cannot reach the best height so far, none past it can. Two 120-gons tested
+    // every corner (a fortieth of their adaptive impact).
+    let top = b.iter().fold(f64::NEG_INFINITY, |t, v| t.max(v[1]));
+    let n = a.len();
+    let lowest = (0..n).fold(0, |k, i| if a[i][1] < a[k][1] { i } else { k });
+    let reaches = |v: [f64; 2], best: f64| top - v[1] + 1e-12 * (top.abs() + v[1].abs()) >= best;
+    let mut best = f64::NEG_INFINITY;
+    over(a[lowest], &mut best);
+    let (mut ahead, mut behind, mut taken) = (wrap(lowest + 1, n), wrap(lowest + n - 1, n), 1);
+    while taken < n && reaches(a[ahead], best) {
+        over(a[ahead], &mut best);
+        (ahead, taken) = (wrap(ahead + 1, n), taken + 1);
+    }
+    while taken < n && reaches(a[behind], best) {
+        over(a[behind], &mut best);
+        (behind, taken) = (wrap(behind + n - 1, n), taken + 1);
     }
     best
 }
@@ -131,9 +151,10 @@ mod tests {
     use super::*;
     use crate::geometry::Polygon;
 
-    /// The chain's bisection finds the same height as every corner against every edge, to the
-    /// last bit: regular 3- to 200-gons and random convex polygons (corners of an ellipse), at
-    /// every orientation, each way round, and with corners on the partner's corners' abscissae
+    /// The chain's bisection, at the corners that can reach the highest, finds the same height
+    /// as every corner against every edge, to the last bit: regular 3- to 200-gons and random
+    /// convex polygons (corners of an ellipse), of sizes 1e-2 to 1e2 apart, at every
+    /// orientation, each way round, and with corners on the partner's corners' abscissae
     /// (squares and their copies turned by multiples of a right angle).
     #[test]
     fn the_chain_gives_every_edge_tests_height() {
@@ -159,13 +180,23 @@ mod tests {
             all.is_finite()
         };
         let mut finite = 0;
-        for _ in 0..2000 {
+        for case in 0..2000 {
             let (pa, pb) = (polygon(&mut rng), polygon(&mut rng));
-            let a: Vec<[f64; 2]> = placed(&pa, [0.0, 0.0], rng() * 7.0).collect();
+            // Half the cases with a 1e-2 to 1e2 times the size of b.
+            let size = if case % 2 == 0 {
+                1.0
+            } else {
+                10f64.powf(4.0 * rng() - 2.0)
+            };
+            let a: Vec<[f64; 2]> = placed(&pa, [0.0, 0.0], rng() * 7.0)
+                .map(|v| [size * v[0], size * v[1]])
+                .collect();
             let b: Vec<[f64; 2]> = placed(&pb, [0.0, 0.0], rng() * 7.0).collect();
             finite += usize::from(check(&a, &b)) + usize::from(check(&b, &a));
         }
-        assert!(finite > 3900, "{finite}");
+        // Where one body is a hundred times the other, no corner of the large one may lie
+        // over the small one's top (its corners do over the large one's).
+        assert!(finite > 3850, "{finite}");
         let square = Polygon::regular(1.0, 4).unwrap();
         for k in 0..8 {
             let phi = k as f64 * std::f64::consts::FRAC_PI_4;
