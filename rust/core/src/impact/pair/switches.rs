@@ -168,6 +168,14 @@ pub(super) fn first_switch<G: PairGeometry>(
     let g = |ev: Event, th: f64| samples.event_value(ev, th);
     let mut first: Option<(f64, Event)> = None;
     let mut parting = None;
+    // The held springs' switch, located once: the parting's search reads it before its turn.
+    let springs = std::cell::OnceCell::new();
+    let springs_in = || {
+        *springs.get_or_init(|| {
+            let precision = ode.switch_precision(Event::Springs);
+            switch_in(|th| g(Event::Springs, th), precision)
+        })
+    };
     for ev in ode.candidates(m) {
         let tangential = matches!(ev, Event::ToSlip | Event::ToStick);
         if ((ignored.tangential || firm) && tangential) || (ignored.clip && ev == Event::ClipOff) {
@@ -176,6 +184,10 @@ pub(super) fn first_switch<G: PairGeometry>(
         let precision = ode.switch_precision(ev);
         let found = if tangential {
             tangential_switch_in(|th| g(ev, th), precision).map(|th| (th, th))
+        } else if ev == Event::Springs {
+            springs_in()
+        } else if ev == Event::Separate && ode.geometry.holds_springs() {
+            parting_in(|th| g(ev, th), springs_in, precision)
         } else {
             switch_in(|th| g(ev, th), precision)
         };
@@ -238,6 +250,51 @@ fn tangential_switch_in(g: impl Fn(f64) -> f64, precision: f64) -> Option<f64> {
     sampled_first_switch(TANGENTIAL_PARTS, &g, (|| g(0.0), g(1.0)), locate)
 }
 
+/// The parting of bodies whose overlap the held springs follow, `g` the separation's
+/// function (-depth in contact, the gap past it): [`switch_in`] in a bracket from the held
+/// springs' switch in the step (`springs`, located for its own sake), where there is one past
+/// the parting. The overlap of two convex bodies closes to a corner on the other body's edge,
+/// and there the held crossings reach that corner: the springs' switch fires a margin of
+/// 1e-9 of an edge after the parting (twin 120-gons: 2.2e-9 of the step). Located on the
+/// whole step, the depth inside and the gap past meet at a kink (slopes 1.84e-5 and 1.28e-5
+/// per unit of the step there), so Brent's iterates closed in from past the parting, six of
+/// its ten evaluations measuring the gap (~20k instructions each, places and scans every
+/// corner); from the springs' switch one gap is measured, and the bracket widened towards
+/// the start from the precision sixteenfold, three times at most, until it holds the parting
+/// (in contact: the held overlap's depth, cheap), else from the start. Without such a switch,
+/// or where the depth there is not past the parting, the whole step as [`switch_in`].
+fn parting_in(
+    g: impl Fn(f64) -> f64,
+    springs: impl FnOnce() -> Option<(f64, f64)>,
+    precision: f64,
+) -> Option<(f64, f64)> {
+    let g1 = g(1.0);
+    if !(g1 > 0.0) {
+        return None;
+    }
+    let whole = || Some(locate_switch(&g, (0.0, g(0.0)), (1.0, g1), precision));
+    let Some((near, _)) = springs().filter(|&(near, _)| near > 0.0 && near < 1.0) else {
+        return whole();
+    };
+    let g_near = g(near);
+    if !(g_near > 0.0) {
+        return whole();
+    }
+    let (mut past, mut g_past, mut width) = (near, g_near, precision);
+    for _ in 0..3 {
+        let th = past - width;
+        if th <= 0.0 {
+            break;
+        }
+        let value = g(th);
+        if !(value > 0.0) {
+            return Some(locate_switch(&g, (th, value), (past, g_past), precision));
+        }
+        (past, g_past, width) = (th, value, 16.0 * width);
+    }
+    Some(locate_switch(&g, (0.0, g(0.0)), (past, g_past), precision))
+}
+
 /// The bracket (inside, past) of the first change of sign of `g` on the step, `g` > 0
 /// meaning the switch fired, located to `precision` of the step; `None` where `g(1)` has not
 /// fired.
@@ -247,4 +304,71 @@ fn switch_in(g: impl Fn(f64) -> f64, precision: f64) -> Option<(f64, f64)> {
         return None;
     }
     Some(locate_switch(&g, (0.0, g(0.0)), (1.0, g1), precision))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// A separation function with a kink at the parting `r`: -depth inside (slope `inside`),
+    /// the gap past it (slope `past`), as two 120-gons' at their parting; counts the
+    /// evaluations past the parting (each measures the gap).
+    fn kinked(r: f64, (inside, past): (f64, f64), gaps: &Cell<u32>) -> impl Fn(f64) -> f64 + '_ {
+        move |th: f64| {
+            if th < r {
+                -inside * (r - th)
+            } else {
+                gaps.set(gaps.get() + 1);
+                past * (th - r)
+            }
+        }
+    }
+
+    /// The parting from the held springs' switch just past it is the same parting, to the
+    /// precision, as on the whole step, with no more gaps measured (fewer where the depth
+    /// falls faster than the gap grows, as at two 120-gons' parting); from a switch far past
+    /// it (three widenings, then from the start) the same at four gaps more at most; without
+    /// a switch, or with one before the parting, the whole step's bracket bit for bit.
+    #[test]
+    fn the_parting_from_the_springs_switch_is_the_whole_steps() {
+        let precision = 1e-9;
+        for (r, slopes) in [
+            (0.18847012144751962, (1.84e-5, 1.28e-5)),
+            (0.5, (1.28e-5, 1.84e-5)),
+            (0.93, (3.0, 0.01)),
+        ] {
+            let (hinted, whole) = (Cell::new(0), Cell::new(0));
+            let after = Some((r + 2.2e-9, r + 2.3e-9));
+            let (a, b) = parting_in(kinked(r, slopes, &hinted), || after, precision).unwrap();
+            let (wa, wb) = switch_in(kinked(r, slopes, &whole), precision).unwrap();
+            let parted = |(lo, hi): (f64, f64)| lo <= r && r < hi && hi - lo <= precision;
+            assert!(
+                parted((a, b)) && parted((wa, wb)),
+                "{r}: {a} {b}, {wa} {wb}"
+            );
+            assert!(hinted.get() <= whole.get(), "{r}: {hinted:?} {whole:?}");
+            if slopes.0 > slopes.1 {
+                assert!(hinted.get() < whole.get(), "{r}: {hinted:?} {whole:?}");
+            }
+            // Far past the parting: three widenings, then from the start.
+            let far = Some((r + 0.5 * (1.0 - r), 1.0));
+            hinted.set(0);
+            let (a, b) = parting_in(kinked(r, slopes, &hinted), || far, precision).unwrap();
+            assert!(parted((a, b)), "{r}: {a} {b}");
+            assert!(hinted.get() <= whole.get() + 4, "{r}: {hinted:?} {whole:?}");
+            for no_use in [None, Some((0.5 * r, 0.6 * r))] {
+                let g = kinked(r, slopes, &hinted);
+                let bits = |(a, b): (f64, f64)| (a.to_bits(), b.to_bits());
+                assert_eq!(
+                    parting_in(&g, || no_use, precision).map(bits),
+                    switch_in(&g, precision).map(bits)
+                );
+            }
+        }
+        // Still in contact at the step's end: no parting.
+        let gaps = Cell::new(0);
+        let g = kinked(1.5, (1.0, 1.0), &gaps);
+        assert_eq!(parting_in(g, || Some((0.5, 0.6)), precision), None);
+    }
 }
