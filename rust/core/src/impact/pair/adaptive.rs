@@ -269,6 +269,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered
     /// left out; the largest overlap and area up to it are found on the same samples of the
     /// law ([`extremes_in`]).
+    #[inline]
     fn first_switch(run: &mut Run<'_, Self>, step: &PairStep) -> Option<(f64, Event)> {
         let side = &mut run.side;
         let ignored = std::mem::take(&mut side.ignored);
@@ -298,6 +299,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 
     /// Restores the angular momentum; after a step with the clip held, the end state decides
     /// the clip again.
+    #[inline]
     fn settle(run: &mut Run<'_, Self>) {
         keep_angular_momentum(run);
         if run.side.step_ignored.clip {
@@ -310,6 +312,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     }
 
     /// Apart, the flight is jumped; in a slip, a slip whose force turned with the sliding ends.
+    #[inline]
     fn without_switch(run: &mut Run<'_, Self>) {
         if run.mode.apart {
             fly(run);
@@ -346,6 +349,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     /// powers at the velocities before it are those after, to round-off; else the law
     /// evaluated afresh, or from its contact where the switch evaluated it at this state
     /// (`eval_at_switch`). Then the trace.
+    #[inline]
     fn refresh(
         run: &mut Run<'_, Self>,
         whole: Option<&PairStep>,
@@ -456,6 +460,7 @@ impl<G: PairGeometry> OnPair<'_, G> {
     /// [`TangentialStages::stays_slipping_in_contact`]). Then its samples inside are skipped.
     /// Not where the start's evaluation is not kept (a touch), nor where a stage found the
     /// bodies apart.
+    #[inline]
     fn stays_in_tangential_mode(&self, m: &Mode, step: &PairStep) -> bool {
         let Some((_, start)) = self.start.filter(|(mode, _)| mode == m) else {
             return false;
