@@ -380,7 +380,11 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
             side.ode.eval_in_flight(&run.mode, &run.s, &mut k);
             (k, None)
         } else {
-            let (k, e) = Self::eval_in_mode(run);
+            let (k, e) = if G::CORNERS {
+                Self::eval_in_mode(run)
+            } else {
+                run.side.ode.eval_new(&run.mode, &run.s)
+            };
             (k, Some(e))
         };
         run.side.start = start.map(|e| (run.mode, e));
