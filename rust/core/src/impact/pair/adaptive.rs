@@ -98,7 +98,7 @@ pub(super) struct OnPair<'a, G> {
     start: Option<(Mode, Eval)>,
     /// The law's last evaluation at a switch, with the state and mode it was taken in: the
     /// contact the switch's other tests and the next piece's first stage read
-    /// ([`OnPair::eval_at_switch`]).
+    /// ([`OnPair::eval_at_switch`]); dropped where the held springs change.
     pub(super) at_switch: Option<Kept>,
     /// The step just taken stayed in its slip by the stages' bound: its end cannot have turned
     /// the sliding (`end_a_reversed_slip` need not evaluate the law there).
@@ -190,6 +190,9 @@ fn begin<'a, 't, G: PairGeometry>(
     Run::new(side, (s, mode, k1), h, lim, trace)
 }
 
+// The hooks the loop calls at every step are `#[inline]`, so that each is instantiated where
+// the loop is: left to the codegen units' partitioning, `refresh`, `first_switch` and `settle`
+// were called, and `refresh` copied its evaluations through `memcpy`.
 impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     type State = State;
     type Mode = Mode;
@@ -383,6 +386,8 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
             let (k, e) = if G::CORNERS {
                 Self::eval_in_mode(run)
             } else {
+                // Round bodies keep nothing at a switch: their law inlined here (called, it
+                // cost two discs 5 % of their time at the same instructions).
                 run.side.ode.eval_new(&run.mode, &run.s)
             };
             (k, Some(e))

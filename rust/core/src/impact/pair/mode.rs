@@ -27,11 +27,7 @@ impl<G: PairGeometry> OnPair<'_, G> {
     /// kept there ([`Self::eval_at_switch`]) where it is.
     fn to_stick_value_at_switch(run: &Run<'_, Self>) -> f64 {
         let (side, m, s) = (&run.side, &run.mode, &run.s);
-        match side
-            .at_switch
-            .as_ref()
-            .and_then(|kept| kept.contact_at(s, m))
-        {
+        match side.kept_contact(s, m) {
             Some(contact) => side.ode.event_value_with(m, Event::ToStick, s, || {
                 side.ode.rates(m, s, contact, &mut [0.0; NS])
             }),
@@ -52,21 +48,25 @@ impl<G: PairGeometry> OnPair<'_, G> {
     pub(super) fn eval_at_switch(run: &mut Run<'_, Self>, m: &Mode) -> (State, Eval) {
         let (side, s) = (&mut run.side, &run.s);
         if !G::CORNERS {
-            // Round bodies' frame is a lens in closed form: keeping the evaluation cost two
-            // discs more than finding it again (1.4 % of their impact's instructions).
+            // Round bodies' frame is a lens in closed form, found again for less than keeping
+            // it costs.
             return side.ode.eval_new(m, s);
         }
         let mut ds = [0.0; NS];
-        let e = match side
-            .at_switch
-            .as_ref()
-            .and_then(|kept| kept.contact_at(s, m))
-        {
+        let e = match side.kept_contact(s, m) {
             Some(contact) => side.ode.rates(m, s, contact, &mut ds),
             None => side.ode.eval(m, s, &mut ds),
         };
         side.at_switch = Some(Kept::new(s, m, e));
         (ds, e)
+    }
+
+    /// The contact kept at state `s` for a mode of `m`'s clip, where one is
+    /// ([`Kept::contact_at`]).
+    fn kept_contact(&self, s: &State, m: &Mode) -> Option<Eval> {
+        self.at_switch
+            .as_ref()
+            .and_then(|kept| kept.contact_at(s, m))
     }
 
     /// Switches the mode at event `ev` and sets the algebraic part of the state.
