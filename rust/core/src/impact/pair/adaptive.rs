@@ -15,7 +15,7 @@
 
 use super::law::{error_scales, PairOde};
 use super::piece::{
-    Eval, Event, Mode, State, Tan, GX, GY, INTERPOLATED, NS, W1, W2, WD, WN, WT, X, XI, Y,
+    Eval, Event, Kept, Mode, State, Tan, GX, GY, INTERPOLATED, NS, W1, W2, WD, WN, WT, X, XI, Y,
 };
 use super::switches::{first_switch, Ignored, KeptSamples, StepSamples};
 use super::Start;
@@ -96,6 +96,10 @@ pub(super) struct OnPair<'a, G> {
     /// first stage was taken from it (the stage filters' value at the start,
     /// [`OnPair::stays_in_tangential_mode`]).
     start: Option<(Mode, Eval)>,
+    /// The law's last evaluation at a switch, with the state and mode it was taken in: the
+    /// contact the switch's other tests and the next piece's first stage read
+    /// ([`OnPair::eval_at_switch`]); dropped where the held springs change.
+    pub(super) at_switch: Option<Kept>,
     /// The step just taken stayed in its slip by the stages' bound: its end cannot have turned
     /// the sliding (`end_a_reversed_slip` need not evaluate the law there).
     pub(super) firm_slip: bool,
@@ -179,12 +183,16 @@ fn begin<'a, 't, G: PairGeometry>(
         extremes: None,
         k_end: None,
         start: None,
+        at_switch: None,
         firm_slip: false,
     };
     let h = lim.h_max.min(lim.h_singular);
     Run::new(side, (s, mode, k1), h, lim, trace)
 }
 
+// The hooks the loop calls at every step are `#[inline]`, so that each is instantiated where
+// the loop is: left to the codegen units' partitioning, `refresh`, `first_switch` and `settle`
+// were called, and `refresh` copied its evaluations through `memcpy`.
 impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     type State = State;
     type Mode = Mode;
@@ -264,6 +272,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     /// The first switch of the step's mode ([`first_switch`]), the switches that chattered
     /// left out; the largest overlap and area up to it are found on the same samples of the
     /// law ([`extremes_in`]).
+    #[inline]
     fn first_switch(run: &mut Run<'_, Self>, step: &PairStep) -> Option<(f64, Event)> {
         let side = &mut run.side;
         let ignored = std::mem::take(&mut side.ignored);
@@ -293,6 +302,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
 
     /// Restores the angular momentum; after a step with the clip held, the end state decides
     /// the clip again.
+    #[inline]
     fn settle(run: &mut Run<'_, Self>) {
         keep_angular_momentum(run);
         if run.side.step_ignored.clip {
@@ -305,6 +315,7 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     }
 
     /// Apart, the flight is jumped; in a slip, a slip whose force turned with the sliding ends.
+    #[inline]
     fn without_switch(run: &mut Run<'_, Self>) {
         if run.mode.apart {
             fly(run);
@@ -324,12 +335,12 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
         }
         if run.chatter.take_tangential() {
             if run.mode.tan == Tan::Stick {
-                let e = side.ode.eval_new(&run.mode, &run.s).1;
+                let e = Self::eval_in_mode(run).1;
                 run.mode.tan = Tan::Slip(e.trial.signum());
             }
-            side.ignored.tangential = true;
+            run.side.ignored.tangential = true;
         }
-        side.ignored.all = run.chatter.stalled();
+        run.side.ignored.all = run.chatter.stalled();
     }
 
     /// The next step's first stage, at the state this one ended in: a touch's
@@ -339,7 +350,9 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
     /// velocities restored to the angular momentum: the restoring turn is rigid, it changes no
     /// relative velocity at the contact, so the forces, the spring's rate and the forces'
     /// powers at the velocities before it are those after, to round-off; else the law
-    /// evaluated afresh. Then the trace.
+    /// evaluated afresh, or from its contact where the switch evaluated it at this state
+    /// (`eval_at_switch`). Then the trace.
+    #[inline]
     fn refresh(
         run: &mut Run<'_, Self>,
         whole: Option<&PairStep>,
@@ -370,10 +383,16 @@ impl<'a, G: PairGeometry> AdaptiveSide for OnPair<'a, G> {
             side.ode.eval_in_flight(&run.mode, &run.s, &mut k);
             (k, None)
         } else {
-            let (k, e) = side.ode.eval_new(&run.mode, &run.s);
+            let (k, e) = if G::CORNERS {
+                Self::eval_in_mode(run)
+            } else {
+                // Round bodies keep nothing at a switch: their law inlined here (called, it
+                // cost two discs 5 % of their time at the same instructions).
+                run.side.ode.eval_new(&run.mode, &run.s)
+            };
             (k, Some(e))
         };
-        side.start = start.map(|e| (run.mode, e));
+        run.side.start = start.map(|e| (run.mode, e));
         if let Some(tr) = run.trace.as_deref_mut() {
             push(&run.side, (&run.mode, &run.s, run.t), tr);
         }
@@ -450,6 +469,7 @@ impl<G: PairGeometry> OnPair<'_, G> {
     /// [`TangentialStages::stays_slipping_in_contact`]). Then its samples inside are skipped.
     /// Not where the start's evaluation is not kept (a touch), nor where a stage found the
     /// bodies apart.
+    #[inline]
     fn stays_in_tangential_mode(&self, m: &Mode, step: &PairStep) -> bool {
         let Some((_, start)) = self.start.filter(|(mode, _)| mode == m) else {
             return false;

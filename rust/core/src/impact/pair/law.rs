@@ -343,6 +343,16 @@ impl<'a, G: PairGeometry> PairOde<'a, G> {
         k
     }
 
+    /// [`Self::initial_tan`] from the law's evaluation `stuck` at the state in its mode, stuck
+    /// (where `mu` > 0): the evaluation read where it is already known.
+    pub(super) fn tan_of_stuck(&self, stuck: &Eval) -> Tan {
+        if stuck.trial.abs() <= self.mu * stuck.f_raw.max(0.0) {
+            Tan::Stick
+        } else {
+            Tan::Slip(stuck.trial.signum())
+        }
+    }
+
     /// The tangential mode when the normal force acts: stick if the spring's trial force is
     /// inside the cone, else slip in its direction.
     pub(super) fn initial_tan(&self, m: &Mode, s: &State) -> Tan {

@@ -75,6 +75,41 @@ pub(super) struct Eval {
     pub(super) lever_rate: Option<[f64; 2]>,
 }
 
+/// The law's evaluation at a state, kept where a switch took it: another test at that state, or
+/// the next piece's first stage, reads its contact (the frame and the normal force, which read
+/// the positions and velocities alone, and the clip) in any tangential mode and spring.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Kept {
+    /// The positions and velocities it was taken at (all the state but the spring and works).
+    at: [f64; XI],
+    clipped: bool,
+    apart: bool,
+    e: Eval,
+}
+
+impl Kept {
+    /// Evaluation `e` at state `s` in mode `m`.
+    pub(super) fn new(s: &State, m: &Mode, e: Eval) -> Self {
+        Kept {
+            at: std::array::from_fn(|i| s[i]),
+            clipped: m.clipped,
+            apart: m.apart,
+            e,
+        }
+    }
+
+    /// The kept evaluation, where it holds the contact at `s` in mode `m`: the same
+    /// positions and velocities, bit for bit, and a mode of the same clip.
+    pub(super) fn contact_at(&self, s: &State, m: &Mode) -> Option<Eval> {
+        let same_state = self
+            .at
+            .iter()
+            .zip(s)
+            .all(|(a, b)| a.to_bits() == b.to_bits());
+        (same_state && (self.clipped, self.apart) == (m.clipped, m.apart)).then_some(self.e)
+    }
+}
+
 impl Eval {
     /// The evaluation as the fixed steps report theirs (for the trace), in mode `m`.
     pub(super) fn forces(&self, m: &Mode) -> PairForces {
