@@ -541,8 +541,7 @@ fn assemble_into(
 ) -> bool {
     let d = sub(p1, p0);
     // The plain root, not `hypot` (a call, 3 % of two 120-gons' impact): the chord's square
-    // neither underflows nor overflows for bodies between 1e-100 m and 1e100 m, and a chord
-    // this short is refused below.
+    // stays in range for bodies of 1e-100 m to 1e100 m (shorter chords are refused below).
     let chord = dot(d, d).sqrt();
     // A chord at the round-off of the coordinates is a touch, not an overlap: its direction
     // (the normal) would be noise.
