@@ -195,6 +195,23 @@ fn the_window_gives_the_full_clip_bit_for_bit() {
     );
 }
 
+/// Case `case`'s pair: an `n`-gon of circumradius 0.1 to 10 (random convex in every third
+/// case) and an `m`-gon of circumradius 1 (random convex in every fifth), drawn from `s`.
+fn drawn_pair(case: usize, (n, m): (usize, usize), s: &mut u64) -> (Polygon, Polygon) {
+    let r1 = 10f64.powf(-1.0 + 2.0 * rng(s));
+    let pa = if case % 3 == 0 {
+        random_convex(r1, n, s)
+    } else {
+        Polygon::regular(r1, n).unwrap()
+    };
+    let pb = if case % 5 == 0 {
+        random_convex(1.0, m, s)
+    } else {
+        Polygon::regular(1.0, m).unwrap()
+    };
+    (pa, pb)
+}
+
 /// The windowed clip along slow motions, as an impact's evaluations meet it: each pair turned
 /// and moved a small part of a corner's angle per evaluation, from grazing through deep and
 /// out again, so that the searches start from the last evaluation's corners (and the run of
@@ -208,19 +225,11 @@ fn the_window_follows_slow_motion_bit_for_bit() {
     let (mut overlapping, mut fell_back) = (0, 0);
     for case in 0..120 {
         let s = &mut seed;
-        let n = [12, 40, 120, 300][case % 4];
-        let m = [120, 300, 17, 120][(case / 4) % 4];
-        let r1 = 10f64.powf(-1.0 + 2.0 * rng(s));
-        let pa = if case % 3 == 0 {
-            random_convex(r1, n, s)
-        } else {
-            Polygon::regular(r1, n).unwrap()
-        };
-        let pb = if case % 5 == 0 {
-            random_convex(1.0, m, s)
-        } else {
-            Polygon::regular(1.0, m).unwrap()
-        };
+        let (n, m) = (
+            [12, 40, 120, 300][case % 4],
+            [120, 300, 17, 120][(case / 4) % 4],
+        );
+        let (pa, pb) = drawn_pair(case, (n, m), s);
         let reach = pa.circumradius() + pb.circumradius();
         let (ang0, phi1, phi2) = (rng(s) * 6.3, rng(s) * 6.3, rng(s) * 6.3);
         let (spin1, spin2, swing) = (rng(s) - 0.5, rng(s) - 0.5, 0.3 * (rng(s) - 0.5));
@@ -268,19 +277,11 @@ fn the_window_gives_the_full_clip_at_a_touch() {
     let (mut apart, mut told, mut overlapping) = (0, 0, 0);
     for case in 0..200 {
         let s = &mut seed;
-        let n = [12, 40, 120, 300][case % 4];
-        let m = [120, 17, 300, 120][(case / 4) % 4];
-        let r1 = 10f64.powf(-1.0 + 2.0 * rng(s));
-        let pa = if case % 3 == 0 {
-            random_convex(r1, n, s)
-        } else {
-            Polygon::regular(r1, n).unwrap()
-        };
-        let pb = if case % 5 == 0 {
-            random_convex(1.0, m, s)
-        } else {
-            Polygon::regular(1.0, m).unwrap()
-        };
+        let (n, m) = (
+            [12, 40, 120, 300][case % 4],
+            [120, 17, 300, 120][(case / 4) % 4],
+        );
+        let (pa, pb) = drawn_pair(case, (n, m), s);
         let (ang, phi1, phi2) = (rng(s) * 6.3, rng(s) * 6.3, rng(s) * 6.3);
         let b = PlacedPolygon::new(&pb, [0.0, 0.0], phi2);
         let vb = placed(&b);

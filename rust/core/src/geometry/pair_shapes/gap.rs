@@ -270,26 +270,24 @@ pub(super) fn separated_gap(
     // The polygon of fewer corners against a line of the other, as `separated` tries them
     // (its search for many corners second: the two are pure, either answer is its answer;
     // the line for few corners only, as there).
-    if a.len() <= b.len() {
-        if let Some(line) = (a.len() <= FEW_EDGES)
-            .then(|| separating_line(a, body_b))
-            .flatten()
-        {
-            return Some(gap_across(&line, (a, body_a), (b, body_b), 1));
-        }
-        if !corners_outside_a_line(a, body_a, body_b) {
-            return None;
-        }
+    let ((few, body_few), (other, body_other), hint) = if a.len() <= b.len() {
+        ((a, body_a), (b, body_b), 1)
     } else {
-        if let Some(line) = (b.len() <= FEW_EDGES)
-            .then(|| separating_line(b, body_a))
-            .flatten()
-        {
-            return Some(gap_across(&line, (b, body_b), (a, body_a), 0));
-        }
-        if !corners_outside_a_line(b, body_b, body_a) {
-            return None;
-        }
+        ((b, body_b), (a, body_a), 0)
+    };
+    if let Some(line) = (few.len() <= FEW_EDGES)
+        .then(|| separating_line(few, body_other))
+        .flatten()
+    {
+        return Some(gap_across(
+            &line,
+            (few, body_few),
+            (other, body_other),
+            hint,
+        ));
+    }
+    if !corners_outside_a_line(few, body_few, body_other) {
+        return None;
     }
     // The two distances in `gap`'s order: each moves its body's search hint.
     let to_b = vertices_distance((a, body_a), (b, body_b), 1);

@@ -368,11 +368,7 @@ impl<'a, G: PairGeometry> PairOde<'a, G> {
                 s,
             )
             .1;
-        if e.trial.abs() <= self.mu * e.f_raw.max(0.0) {
-            Tan::Stick
-        } else {
-            Tan::Slip(e.trial.signum())
-        }
+        self.tan_of_stuck(&e)
     }
 }
 
